@@ -1,0 +1,94 @@
+"""The policy interface: what the episode engine asks of every policy.
+
+A policy is reset with the instruction, then asked for one action per control
+step from an :class:`Observation`. It declares, in :class:`PolicyInfo`, the
+robots it can drive, the ManiSkill control mode its actions are in, the image
+size it wants, and whether it needs privileged simulator state (only
+baselines such as the oracle do; a VLA sees the image, the instruction and,
+optionally, proprioception).
+"""
+
+from __future__ import annotations
+
+import abc
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from ladev_lib.scenes import SceneSpec
+
+
+@dataclass(frozen=True)
+class PolicyInfo:
+    """What a policy needs and produces."""
+
+    name: str
+    robots: tuple[str, ...]
+    """Robots it can drive ("panda", "widowx", "google_robot"); the first is its default."""
+    control_mode: str
+    """ManiSkill controller its actions are for, e.g. "pd_joint_pos", "pd_ee_delta_pose"."""
+    image_size: tuple[int, int] | None = (256, 256)
+    """(width, height) of the policy-camera image it wants; None if it needs no image."""
+    privileged: bool = False
+    """True if it reads simulator state (object poses, the scene spec) instead of pixels."""
+    control_freq_hz: float | None = None
+    """Control frequency the policy was trained at; None: the simulator's default."""
+    max_episode_steps: int | None = None
+    """Episode length it is evaluated with; None: the task's default."""
+
+
+@dataclass(frozen=True)
+class PrivilegedState:
+    """Ground truth handed to privileged policies only."""
+
+    spec: SceneSpec
+    object_poses: dict[str, np.ndarray]
+    """Instance name -> world pose [x, y, z, qw, qx, qy, qz]."""
+    env: Any = None
+    """The unwrapped ManiSkill env, for planners that need the robot model (the oracle)."""
+
+
+@dataclass
+class Observation:
+    """One step's input to a policy."""
+
+    image: np.ndarray | None
+    """(H, W, 3) uint8 RGB from the policy camera, or None if the policy wants no image."""
+    proprio: np.ndarray | None = None
+    """Robot state: joint positions followed by the TCP pose [x, y, z, qw, qx, qy, qz]."""
+    privileged: PrivilegedState | None = None
+    step: int = 0
+    extras: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class PolicyStep:
+    """One step's output: an action in the declared control mode, and a stop flag."""
+
+    action: np.ndarray
+    terminate: bool = False
+
+
+class Policy(abc.ABC):
+    """Base class of every policy. Subclasses set ``info`` and implement two methods."""
+
+    info: PolicyInfo
+
+    @abc.abstractmethod
+    def reset(self, instruction: str) -> None:
+        """Start an episode with this instruction."""
+
+    @abc.abstractmethod
+    def step(self, obs: Observation) -> PolicyStep:
+        """Return the action for this observation."""
+
+    def close(self) -> None:  # noqa: B027 - optional hook
+        """Release resources (models, connections)."""
+
+    def __enter__(self) -> Policy:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

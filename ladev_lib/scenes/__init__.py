@@ -1,0 +1,33 @@
+"""Scene specifications: the contract between the language side and the simulator."""
+
+from ladev_lib.scenes.spec import (
+    SCENE_SPEC_VERSION,
+    CameraOffset,
+    Lighting,
+    ObjectPlacement,
+    Robot,
+    Role,
+    SceneBounds,
+    SceneSpec,
+    TaskSpec,
+    TaskType,
+    check_scene_spec,
+    parse_scene_spec,
+    scene_spec_json_schema,
+)
+
+__all__ = [
+    "SCENE_SPEC_VERSION",
+    "CameraOffset",
+    "Lighting",
+    "ObjectPlacement",
+    "Robot",
+    "Role",
+    "SceneBounds",
+    "SceneSpec",
+    "TaskSpec",
+    "TaskType",
+    "check_scene_spec",
+    "parse_scene_spec",
+    "scene_spec_json_schema",
+]

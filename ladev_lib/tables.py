@@ -1,0 +1,226 @@
+"""The tables stages exchange, with explicit, versioned schemas.
+
+Each artifact is a pydantic row model: one documented field per column. The
+Arrow/Parquet schema is derived from the model, written with the table's name
+and version in the file's metadata, and checked when the file is read back, so
+a stage never consumes a table it does not understand. Add fields; never
+reorder, rename or reuse them.
+
+    write_table(rows, path, EpisodeRow)      # rows: list of models, dicts, or a polars frame
+    df = read_table(path, EpisodeRow)        # polars DataFrame, columns checked
+"""
+
+from __future__ import annotations
+
+import json
+import types
+import typing
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Any, ClassVar, Literal
+
+import polars as pl
+import pyarrow as pa
+import pyarrow.parquet as pq
+from pydantic import BaseModel, ConfigDict, Field
+
+from ladev_lib.errors import LadevError
+
+Factor = Literal["num_objects", "instruction", "object_set", "environment"]
+ObjectSetName = Literal["simpler", "ycb"]
+Environment = Literal["default", "lighting", "camera"]
+InstructionKind = Literal["basic", "paraphrase"]
+EpisodeStatus = Literal["success", "failure", "error", "invalid_scene"]
+
+
+class TableRow(BaseModel):
+    """Base of every table row model."""
+
+    model_config = ConfigDict(extra="forbid")
+    TABLE: ClassVar[str] = ""
+    VERSION: ClassVar[int] = 1
+
+
+class SceneDesignRow(TableRow):
+    """One scene of a study: the ``generate`` stage's output (``scenes.parquet``)."""
+
+    TABLE: ClassVar[str] = "scenes"
+
+    scene_id: str = Field(description="Unique id within the study, e.g. 'pick_up-num_objects-3-007'.")
+    study: str = Field(description="Study name (conf/study/<name>.yaml).")
+    task: str = Field(description="pick_up | move_near | put_on | put_in")
+    factor: Factor = Field(description="The factor this scene belongs to.")
+    level: str = Field(description="The factor's level: '1'..'5', 'basic+paraphrase', 'simpler', 'ycb', 'default', ...")
+    num_objects: int = Field(description="Objects the scene must contain.")
+    object_set: ObjectSetName = Field(description="Object set the scene draws from.")
+    environment: Environment = Field(description="default | lighting | camera")
+    robot: str = Field(description="Robot the scene is laid out for (the workspace is shared).")
+    seed: int = Field(description="Seed derived from the study seed and the scene id.")
+    description: str | None = Field(description="Natural-language scene description (null if generation failed).")
+    base_instruction: str | None = Field(description="Basic instruction in the standard short form.")
+    status: Literal["ok", "failed"] = Field(description="'failed' when the LLM gave no usable description.")
+    reason: str | None = Field(default=None, description="Why generation failed.")
+    llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
+
+
+class CompiledSceneRow(TableRow):
+    """One compiled scene: the ``compile`` stage's output (``compiled.parquet``)."""
+
+    TABLE: ClassVar[str] = "compiled_scenes"
+
+    scene_id: str = Field(description="Scene id from scenes.parquet (or the user's file).")
+    status: Literal["ok", "rejected"] = Field(description="'rejected' when no valid spec could be made.")
+    reason: str | None = Field(default=None, description="Why the scene was rejected.")
+    operations_json: str | None = Field(default=None, description="The LLM's operations, as JSON.")
+    spec_json: str | None = Field(default=None, description="The SceneSpec, as JSON (null if rejected).")
+    notes: list[str] = Field(default_factory=list, description="Adjustments made: clamped values, random picks.")
+    object_sources: list[str] = Field(default_factory=list, description="Per object: 'mesh' or 'standin' (filled when built).")
+    validity: Literal["ok", "invalid", "not_checked"] = Field(default="not_checked", description="Physical-validity verdict.")
+    validity_reason: str | None = Field(default=None, description="Why the scene is physically invalid.")
+    llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
+
+
+class InstructionRow(TableRow):
+    """One instruction for a scene: the ``paraphrase`` stage's output (``instructions.parquet``)."""
+
+    TABLE: ClassVar[str] = "instructions"
+
+    instruction_id: str = Field(description="Unique id: '<scene_id>/basic' or '<scene_id>/para-<k>'.")
+    scene_id: str = Field(description="Scene the instruction belongs to.")
+    kind: InstructionKind = Field(description="basic | paraphrase")
+    text: str = Field(description="The instruction given to the policy.")
+    similarity: float | None = Field(default=None, description="Cosine similarity to the basic instruction (null for basic).")
+    parsed_task: str | None = Field(default=None, description="Task type read back from the text.")
+    parsed_source: str | None = Field(default=None, description="Catalog id of the source read back from the text.")
+    parsed_target: str | None = Field(default=None, description="Catalog id of the target read back from the text.")
+    valid: bool = Field(description="Both checks passed (always true for basic).")
+    reason: str | None = Field(default=None, description="Why the candidate was rejected.")
+    selected: bool = Field(default=False, description="Used in rollout (basic, and the one paraphrase drawn per scene).")
+    llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
+
+
+class EpisodeRow(TableRow):
+    """One rolled-out episode: the ``rollout`` stage's output (``episodes/<policy>.parquet``)."""
+
+    TABLE: ClassVar[str] = "episodes"
+
+    episode_id: str = Field(description="Content hash of (spec, instruction, policy+config, seed, sim config).")
+    study: str = Field(description="Study name.")
+    scene_id: str = Field(description="Scene id.")
+    instruction_id: str = Field(description="Instruction id.")
+    policy: str = Field(description="Policy name (the registry name or the config's label).")
+    task: str = Field(description="pick_up | move_near | put_on | put_in")
+    factor: str = Field(description="Study factor of the scene.")
+    level: str = Field(description="Level of the factor for this episode (for 'instruction': basic | paraphrase).")
+    num_objects: int = Field(description="Objects in the scene.")
+    object_set: str = Field(description="simpler | ycb")
+    environment: str = Field(description="default | lighting | camera")
+    instruction_kind: InstructionKind = Field(description="basic | paraphrase")
+    instruction: str = Field(description="Instruction text given to the policy.")
+    robot: str = Field(description="Robot used.")
+    seed: int = Field(description="Episode seed.")
+    status: EpisodeStatus = Field(description="success | failure | error | invalid_scene")
+    success: bool | None = Field(description="Task success; null for error and invalid_scene.")
+    predicates_json: str = Field(default="{}", description="Final values of the task's named predicates, as JSON.")
+    steps: int = Field(default=0, description="Control steps taken.")
+    sim_seconds: float = Field(default=0.0, description="Time in simulation and rendering.")
+    policy_seconds: float = Field(default=0.0, description="Time in the policy.")
+    total_seconds: float = Field(default=0.0, description="Wall time of the episode.")
+    error: str | None = Field(default=None, description="Error or invalid-scene reason.")
+    video_path: str | None = Field(default=None, description="MP4 of the episode, relative to the repo.")
+    first_frame_path: str | None = Field(default=None, description="PNG of the first policy-camera frame.")
+    last_frame_path: str | None = Field(default=None, description="PNG of the last policy-camera frame.")
+
+    def predicates(self) -> dict[str, bool]:
+        return dict(json.loads(self.predicates_json))
+
+
+# -- schema derivation ---------------------------------------------------------
+
+_SCALARS: dict[Any, pa.DataType] = {str: pa.string(), int: pa.int64(), float: pa.float64(), bool: pa.bool_()}
+
+
+def _arrow_type(annotation: Any) -> pa.DataType:
+    origin = typing.get_origin(annotation)
+    args = typing.get_args(annotation)
+    if origin in (typing.Union, types.UnionType):
+        non_null = [a for a in args if a is not type(None)]
+        if len(non_null) != 1:
+            raise TypeError(f"unsupported union {annotation}")
+        return _arrow_type(non_null[0])
+    if origin is Literal:
+        return _SCALARS[type(args[0])]
+    if origin in (list, Sequence):
+        return pa.list_(_arrow_type(args[0]))
+    if annotation in _SCALARS:
+        return _SCALARS[annotation]
+    raise TypeError(f"unsupported column type {annotation}")
+
+
+def arrow_schema(model: type[TableRow]) -> pa.Schema:
+    """The Arrow schema of a table, with its name and version in the metadata."""
+    hints = typing.get_type_hints(model)
+    fields = []
+    for name in model.model_fields:
+        annotation = hints[name]
+        nullable = type(None) in typing.get_args(annotation)
+        fields.append(pa.field(name, _arrow_type(annotation), nullable=nullable))
+    meta = {b"ladev_table": model.TABLE.encode(), b"ladev_version": str(model.VERSION).encode()}
+    return pa.schema(fields, metadata=meta)
+
+
+def polars_schema(model: type[TableRow]) -> dict[str, pl.DataType]:
+    empty = pl.from_arrow(arrow_schema(model).empty_table())
+    assert isinstance(empty, pl.DataFrame)
+    return dict(empty.schema)
+
+
+class TableError(LadevError):
+    """A table file does not match the schema the reader expects."""
+
+
+def write_table(
+    rows: Iterable[TableRow | dict[str, Any]] | pl.DataFrame,
+    path: str | Path,
+    model: type[TableRow],
+) -> Path:
+    """Validate rows against ``model`` and write them as Parquet, atomically."""
+    schema = arrow_schema(model)
+    if isinstance(rows, pl.DataFrame):
+        table = rows.select(list(model.model_fields)).to_arrow().cast(schema)
+    else:
+        records = [
+            (r if isinstance(r, model) else model.model_validate(r)).model_dump() for r in rows
+        ]
+        table = pa.Table.from_pylist(records, schema=schema)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    pq.write_table(table, tmp)
+    tmp.replace(path)
+    return path
+
+
+def read_table(path: str | Path, model: type[TableRow]) -> pl.DataFrame:
+    """Read a table written by :func:`write_table`, checking its name, version and columns."""
+    path = Path(path)
+    if not path.exists():
+        raise TableError(f"{path}: missing; run the stage that writes the {model.TABLE!r} table first")
+    file_schema = pq.read_schema(path)
+    meta = file_schema.metadata or {}
+    name = meta.get(b"ladev_table", b"").decode()
+    version = int(meta.get(b"ladev_version", b"0").decode() or 0)
+    if name != model.TABLE:
+        raise TableError(f"{path}: holds table {name!r}, expected {model.TABLE!r}")
+    if version > model.VERSION:
+        raise TableError(f"{path}: table version {version} is newer than this LADEV reads ({model.VERSION})")
+    missing = [f for f in model.model_fields if f not in file_schema.names]
+    if missing:
+        raise TableError(f"{path}: missing columns {missing}")
+    df = pl.read_parquet(path)
+    return df.select(list(model.model_fields))
+
+
+def rows_of(df: pl.DataFrame, model: type[TableRow]) -> list[Any]:
+    """The rows of a frame as validated models (for small tables)."""
+    return [model.model_validate(r) for r in df.iter_rows(named=True)]
