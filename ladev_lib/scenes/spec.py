@@ -36,6 +36,8 @@ from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, model_validator
 
+from ladev_lib.scenes.feasibility import task_feasibility
+
 if TYPE_CHECKING:
     from ladev_lib.catalog import Catalog
 
@@ -266,24 +268,32 @@ def _check_catalog(spec: SceneSpec, catalog: Catalog) -> list[str]:
             out.append(f"objects[{i}].id: unknown catalog object {o.id!r}")
     if out:
         return out
-    src = spec.source if spec.task.source in {o.name for o in spec.objects} else None
+    names = {o.name for o in spec.objects}
+    src = spec.source if spec.task.source in names else None
     if src is not None:
         obj = catalog.get(src.id)
         if not obj.graspable:
             out.append(f"task.source: {obj.display_name!r} ({obj.id}) is not graspable")
-        twins = [o.name for o in spec.objects if o.id == src.id and o.name != src.name]
-        if twins:
-            out.append(
-                f"objects: {', '.join(twins)} is the same object as the source {src.name!r}; "
-                "the instruction could not tell them apart"
-            )
+        for role_name, placement in (("source", src), ("target", spec.target if spec.task.target in names else None)):
+            if placement is None:
+                continue
+            twins = [o.name for o in spec.objects if o.id == placement.id and o.name != placement.name]
+            if twins:
+                out.append(
+                    f"objects: {', '.join(twins)} is the same object as the {role_name} "
+                    f"{placement.name!r}; the instruction could not tell them apart"
+                )
     tgt_name = spec.task.target
-    if tgt_name and tgt_name in {o.name for o in spec.objects}:
+    if tgt_name and tgt_name in names:
         tgt = catalog.get(spec.object(tgt_name).id)
         if spec.task.type == "put_on" and not tgt.support:
             out.append(f"task.target: {tgt.display_name!r} cannot hold objects on top (put_on needs a support)")
-        if spec.task.type == "put_in" and not tgt.container:
+        elif spec.task.type == "put_in" and not tgt.container:
             out.append(f"task.target: {tgt.display_name!r} is not a container (put_in needs one)")
+        elif src is not None and catalog.get(src.id).graspable:
+            why = task_feasibility(spec.task.type, catalog.get(src.id), tgt)
+            if why:
+                out.append(f"task: {why}")
     return out
 
 

@@ -1,0 +1,1 @@
+"""Instructions: the basic form, paraphrases, and their validation."""

@@ -1,0 +1,63 @@
+"""Can this source physically go on / in this target? Rules on catalog sizes.
+
+Used by spec validation (an impossible task is rejected with its reason), by
+the compiler and by the random scene sampler.
+"""
+
+from __future__ import annotations
+
+from ladev_lib.catalog import CatalogObject
+
+CONTAINER_WALL_M = 0.01
+"""Wall thickness assumed when turning a container's outer size into its opening."""
+
+
+def _horizontal(obj: CatalogObject) -> tuple[float, float]:
+    x, y, _ = obj.size_m
+    return (min(x, y), max(x, y))
+
+
+def fits_on(source: CatalogObject, target: CatalogObject) -> str | None:
+    """None if ``source`` can rest on ``target``, else why not."""
+    if not target.support:
+        return f"{target.display_name!r} cannot hold objects on top"
+    s_min, _ = _horizontal(source)
+    t_min, _ = _horizontal(target)
+    if t_min < 0.9 * s_min:
+        return (
+            f"{target.display_name!r} ({t_min * 100:.1f} cm across) is too small to hold "
+            f"{source.display_name!r} ({s_min * 100:.1f} cm across)"
+        )
+    return None
+
+
+def fits_in(source: CatalogObject, container: CatalogObject) -> str | None:
+    """None if ``source`` fits inside ``container``, else why not."""
+    if not container.container:
+        return f"{container.display_name!r} is not a container"
+    s_min, s_max = _horizontal(source)
+    c_min, c_max = (v - 2 * CONTAINER_WALL_M for v in _horizontal(container))
+    if s_min + 0.005 > c_min or s_max > c_max + 0.02:
+        return (
+            f"{source.display_name!r} ({s_min * 100:.1f} x {s_max * 100:.1f} cm) does not fit in "
+            f"{container.display_name!r} (opening about {c_min * 100:.1f} x {c_max * 100:.1f} cm)"
+        )
+    # Standing inside, the source's centre of mass must end below the rim.
+    s_height, c_height = source.size_m[2], container.size_m[2]
+    if s_height > 2 * c_height:
+        return (
+            f"{source.display_name!r} ({s_height * 100:.1f} cm tall) would stand far above the rim of "
+            f"{container.display_name!r} ({c_height * 100:.1f} cm deep)"
+        )
+    return None
+
+
+def task_feasibility(task: str, source: CatalogObject, target: CatalogObject | None) -> str | None:
+    """None if the task can be done with these objects, else why not."""
+    if not source.graspable:
+        return f"{source.display_name!r} is not graspable"
+    if task == "put_on" and target is not None:
+        return fits_on(source, target)
+    if task == "put_in" and target is not None:
+        return fits_in(source, target)
+    return None
