@@ -51,7 +51,11 @@ class SceneDesignRow(TableRow):
     task: str = Field(description="pick_up | move_near | put_on | put_in")
     factor: Factor = Field(description="The factor this scene belongs to.")
     level: str = Field(description="The factor's level: '1'..'5', 'basic+paraphrase', 'simpler', 'ycb', 'default', ...")
-    num_objects: int = Field(description="Objects the scene must contain.")
+    num_objects: int = Field(
+        description="Objects the policy chooses among: the source plus distractors. The target of "
+        "move_near/put_on/put_in comes in addition (the paper's one-object scenes hold only the "
+        "object to manipulate)."
+    )
     object_set: ObjectSetName = Field(description="Object set the scene draws from.")
     environment: Environment = Field(description="default | lighting | camera")
     robot: str = Field(description="Robot the scene is laid out for (the workspace is shared).")
@@ -112,7 +116,7 @@ class EpisodeRow(TableRow):
     task: str = Field(description="pick_up | move_near | put_on | put_in")
     factor: str = Field(description="Study factor of the scene.")
     level: str = Field(description="Level of the factor for this episode (for 'instruction': basic | paraphrase).")
-    num_objects: int = Field(description="Objects in the scene.")
+    num_objects: int = Field(description="Source plus distractors (the target not counted), as in scenes.parquet.")
     object_set: str = Field(description="simpler | ycb")
     environment: str = Field(description="default | lighting | camera")
     instruction_kind: InstructionKind = Field(description="basic | paraphrase")

@@ -71,12 +71,19 @@ def sample_scene(
     min_gap_m: float = 0.02,
     attempts: int = 20,
 ) -> SceneSpec:
-    """A random, valid scene: source, target (if the task has one), distractors, placed."""
+    """A random, valid scene: source, target (if the task has one), distractors, placed.
+
+    ``num_objects`` counts the objects the policy chooses among: the source and the
+    distractors. The target of move_near / put_on / put_in (the reference object or
+    receptacle) comes in addition, as in the paper, where a one-object scene holds
+    "only the target object" for every task.
+    """
     bounds = bounds or SceneBounds()
     pool = catalog.select(sets=[object_set])
     needs_target = task != "pick_up"
-    if num_objects < (2 if needs_target else 1):
-        raise ValueError(f"{task} needs at least {2 if needs_target else 1} objects, got {num_objects}")
+    if num_objects < 1:
+        raise ValueError(f"num_objects must be at least 1, got {num_objects}")
+    total = num_objects + (1 if needs_target else 0)
     last_error = ""
     for _ in range(attempts):
         graspable = [o for o in pool if o.graspable]
@@ -89,7 +96,7 @@ def sample_scene(
                 continue
             chosen.append(targets[int(rng.integers(len(targets)))])
         others = [o for o in pool if o.id not in {c.id for c in chosen}]
-        for idx in rng.permutation(len(others))[: num_objects - len(chosen)]:
+        for idx in rng.permutation(len(others))[: total - len(chosen)]:
             chosen.append(others[int(idx)])
         try:
             placed = place_objects(

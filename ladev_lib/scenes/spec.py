@@ -58,7 +58,9 @@ class SceneBounds(BaseModel):
 
     workspace_x_m: tuple[float, float] = (-0.15, 0.15)
     workspace_y_m: tuple[float, float] = (-0.25, 0.25)
-    max_objects: int = Field(default=5, ge=1, le=12)
+    max_objects: int = Field(
+        default=6, ge=1, le=12, description="Objects in a scene, the target included."
+    )
     lighting_max_delta: float = Field(default=0.5, gt=0, le=MAX_LIGHTING_DELTA)
     camera_max_translation_m: float = Field(default=0.05, ge=0, le=0.5)
     camera_max_rotation_deg: float = Field(default=5.0, ge=0, le=45)
