@@ -73,6 +73,16 @@ class Registry(Generic[T]):
         entry = self._entries.get(name)
         return entry.extra if isinstance(entry, _LazyEntry) else None
 
+    def module_of(self, name: str) -> str:
+        """The module that defines ``name``'s entry, without importing a lazy one."""
+        try:
+            entry = self._entries[name]
+        except KeyError:
+            raise UnknownNameError(self.kind, name, list(self._entries)) from None
+        if isinstance(entry, _LazyEntry):
+            return entry.target.split(":")[0]
+        return str(getattr(entry, "__module__", "") or "")
+
     def names(self) -> list[str]:
         return sorted(self._entries)
 

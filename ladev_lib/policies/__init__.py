@@ -15,6 +15,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ladev_lib.policies.base import (
+    EpisodeContext,
     Observation,
     Policy,
     PolicyInfo,
@@ -45,6 +46,7 @@ def make_policy(name: str, **config: Any) -> Policy:
 
 __all__ = [
     "POLICIES",
+    "EpisodeContext",
     "Observation",
     "Policy",
     "PolicyFactory",

@@ -1,6 +1,8 @@
 """The policy interface: what the episode engine asks of every policy.
 
-A policy is reset with the instruction, then asked for one action per control
+Before each episode the engine calls :meth:`Policy.begin_episode` (seed,
+robot, action bounds; optional to implement), then the policy is reset with
+the instruction, then asked for one action per control
 step from an :class:`Observation`. It declares, in :class:`PolicyInfo`, the
 robots it can drive, the ManiSkill control mode its actions are in, the image
 size it wants, and whether it needs privileged simulator state (only
@@ -64,6 +66,20 @@ class Observation:
 
 
 @dataclass(frozen=True)
+class EpisodeContext:
+    """What the engine tells a policy before each episode, besides the instruction."""
+
+    seed: int
+    """The episode seed: a policy that samples must draw from it, so reruns match."""
+    robot: str
+    """The robot the episode runs with (one of ``PolicyInfo.robots``)."""
+    action_low: np.ndarray
+    """Lower bound of the action space of the declared control mode (may be -inf)."""
+    action_high: np.ndarray
+    """Upper bound of the action space (may be +inf)."""
+
+
+@dataclass(frozen=True)
 class PolicyStep:
     """One step's output: an action in the declared control mode, and a stop flag."""
 
@@ -83,6 +99,9 @@ class Policy(abc.ABC):
     @abc.abstractmethod
     def step(self, obs: Observation) -> PolicyStep:
         """Return the action for this observation."""
+
+    def begin_episode(self, ctx: EpisodeContext) -> None:  # noqa: B027 - optional hook
+        """Called before :meth:`reset` with the episode's seed, robot and action bounds."""
 
     def close(self) -> None:  # noqa: B027 - optional hook
         """Release resources (models, connections)."""

@@ -1,0 +1,241 @@
+"""The episode loop: one (scene, instruction, policy, seed) in, one judged outcome out.
+
+    outcome = run_episode(sim, policy, job, media)
+
+Load the scene into the reused simulator, check it is physically valid, then
+step the policy with what it declares it reads (the image at its size only if
+it wants one; proprioception; privileged state only if privileged) until the
+task succeeds, the policy stops, or the task's step limit. Every failure
+inside becomes an ``error`` outcome with its reason, never an exception: a
+simulator exception, a policy exception, an action with NaN/inf or the wrong
+shape. Hangs are the worker's business (a heartbeat, see :class:`Heartbeat`):
+a call stuck in C code cannot be interrupted from inside its own process.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Protocol
+
+import numpy as np
+
+from ladev_lib.policies.base import EpisodeContext, Policy
+from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, MediaOptions
+from ladev_lib.rollout.media import write_mp4, write_png
+from ladev_lib.rollout.simulator import EpisodeSim
+from ladev_lib.scenes import SceneSpec
+
+PHASES: tuple[str, ...] = ("idle", "setup", "load", "policy", "sim", "media")
+
+
+class Heartbeat(Protocol):
+    """Tells whoever watches the worker which phase it is in, and for how long it may last."""
+
+    def enter(self, phase: str, step: int, limit_s: float) -> None: ...
+
+
+class NoHeartbeat:
+    """For in-process runs: nobody watches."""
+
+    def enter(self, phase: str, step: int, limit_s: float) -> None:
+        del phase, step, limit_s
+
+
+@dataclass(frozen=True)
+class Limits:
+    step_timeout_s: float = 120.0
+    setup_timeout_s: float = 900.0
+
+
+def choose_robot(scene_robot: str, policy_robots: tuple[str, ...]) -> str:
+    """The scene's robot when the policy can drive it, else the policy's first robot."""
+    if not policy_robots or scene_robot in policy_robots:
+        return scene_robot
+    return policy_robots[0]
+
+
+def seed_everything(seed: int) -> None:
+    """Seed the global generators a policy might use (torch only if already loaded)."""
+    random.seed(seed)
+    np.random.seed(seed % 2**32)
+    torch = sys.modules.get("torch")
+    if torch is not None:
+        torch.manual_seed(seed)
+
+
+def describe_exception(where: str, exc: BaseException) -> str:
+    """``where: Type: message (at file:line)`` — short enough for a table cell."""
+    tb = traceback.extract_tb(exc.__traceback__)
+    at = f" (at {Path(tb[-1].filename).name}:{tb[-1].lineno})" if tb else ""
+    text = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+    return f"{where}: {type(exc).__name__}: {text}{at}"[:500]
+
+
+def check_action(action: object, shape: tuple[int, ...], step: int) -> tuple[np.ndarray | None, str | None]:
+    """The action as float32 of the right shape, or the reason it is unusable."""
+    try:
+        arr = np.asarray(action, dtype=np.float32)
+    except (TypeError, ValueError) as exc:
+        return None, f"action: step {step}: not a numeric array ({exc})"
+    if arr.shape != shape:
+        return None, f"action: step {step}: shape {arr.shape}, the action space is {shape}"
+    if not np.all(np.isfinite(arr)):
+        bad = "NaN" if np.isnan(arr).any() else "inf"
+        return None, f"action: step {step}: contains {bad} ({arr.tolist()})"
+    return arr, None
+
+
+@dataclass
+class _Clock:
+    sim: float = 0.0
+    policy: float = 0.0
+    started: float = field(default_factory=time.perf_counter)
+
+    def timing(self) -> dict[str, float]:
+        return {
+            "sim_seconds": round(self.sim, 4),
+            "policy_seconds": round(self.policy, 4),
+            "total_seconds": round(time.perf_counter() - self.started, 4),
+        }
+
+
+def run_episode(
+    sim: EpisodeSim,
+    policy: Policy,
+    job: EpisodeJob,
+    media: MediaOptions | None = None,
+    *,
+    robot: str | None = None,
+    heartbeat: Heartbeat | None = None,
+    limits: Limits | None = None,
+) -> EpisodeOutcome:
+    """Run one episode in ``sim`` (already built for the policy's robot and control mode)."""
+    beat = heartbeat or NoHeartbeat()
+    lim = limits or Limits()
+    clock = _Clock()
+    info = policy.info
+    spec = SceneSpec.model_validate_json(job.spec_json)
+    robot = robot or choose_robot(spec.robot, info.robots)
+
+    def failed(status: str, reason: str, steps: int = 0) -> EpisodeOutcome:
+        return EpisodeOutcome.failed(status, robot, reason, steps=steps, **clock.timing())  # type: ignore[arg-type]
+
+    # -- scene ---------------------------------------------------------------
+    beat.enter("load", 0, lim.setup_timeout_s)
+    t = time.perf_counter()
+    try:
+        sim.load(spec, job.seed)
+        invalid = sim.invalid_reason()
+        low, high = sim.action_bounds()
+        max_steps = info.max_episode_steps or sim.max_steps(spec.task.type)
+    except Exception as exc:  # noqa: BLE001 - any simulator failure is this episode's error row
+        clock.sim += time.perf_counter() - t
+        return failed("error", describe_exception("simulator", exc))
+    clock.sim += time.perf_counter() - t
+    if invalid:
+        return failed("invalid_scene", invalid)
+
+    # -- policy --------------------------------------------------------------
+    seed_everything(job.seed)
+    beat.enter("policy", 0, lim.step_timeout_s)
+    t = time.perf_counter()
+    try:
+        policy.begin_episode(EpisodeContext(seed=job.seed, robot=robot, action_low=low, action_high=high))
+        policy.reset(job.instruction)
+    except Exception as exc:  # noqa: BLE001 - a policy failure is this episode's error row
+        clock.policy += time.perf_counter() - t
+        return failed("error", describe_exception("policy", exc))
+    clock.policy += time.perf_counter() - t
+
+    wants_image = info.image_size is not None
+    record = media is not None and media.needs_camera
+    keep_all = media is not None and media.video != "none"
+    frames: list[np.ndarray] = []
+    shape = tuple(low.shape)
+    predicates: dict[str, bool] = {}
+    steps = 0
+    for step in range(max_steps):
+        beat.enter("sim", step, lim.step_timeout_s)
+        t = time.perf_counter()
+        try:
+            obs = sim.observe(image=wants_image, privileged=info.privileged)
+            obs.step = step
+            if record and (keep_all or step == 0):
+                frames.append(obs.image if obs.image is not None else sim.frame())
+        except Exception as exc:  # noqa: BLE001
+            clock.sim += time.perf_counter() - t
+            return failed("error", describe_exception("simulator", exc), steps)
+        clock.sim += time.perf_counter() - t
+
+        beat.enter("policy", step, lim.step_timeout_s)
+        t = time.perf_counter()
+        try:
+            out = policy.step(obs)
+        except Exception as exc:  # noqa: BLE001
+            clock.policy += time.perf_counter() - t
+            return failed("error", describe_exception("policy", exc), steps)
+        clock.policy += time.perf_counter() - t
+        action, problem = check_action(out.action, shape, step)
+        if problem or action is None:
+            return failed("error", problem or "action: missing", steps)
+
+        beat.enter("sim", step, lim.step_timeout_s)
+        t = time.perf_counter()
+        try:
+            predicates = sim.step(action)
+        except Exception as exc:  # noqa: BLE001
+            clock.sim += time.perf_counter() - t
+            return failed("error", describe_exception("simulator", exc), steps)
+        clock.sim += time.perf_counter() - t
+        steps = step + 1
+        if predicates.get("success", False) or out.terminate:
+            break
+
+    t = time.perf_counter()
+    try:
+        if not predicates:  # zero steps: judge the initial state
+            predicates = sim.evaluate()
+        if record:
+            frames.append(sim.frame())
+    except Exception as exc:  # noqa: BLE001
+        clock.sim += time.perf_counter() - t
+        return failed("error", describe_exception("simulator", exc), steps)
+    clock.sim += time.perf_counter() - t
+
+    success = bool(predicates.get("success", False))
+    outcome = EpisodeOutcome.model_validate(
+        {
+            "status": "success" if success else "failure",
+            "success": success,
+            "predicates": predicates,
+            "steps": steps,
+            "robot": robot,
+            **clock.timing(),
+        }
+    )
+    if media is not None and frames:
+        beat.enter("media", steps, lim.setup_timeout_s)
+        outcome = _save_media(outcome, job, media, frames)
+    return outcome
+
+
+def _save_media(
+    outcome: EpisodeOutcome, job: EpisodeJob, media: MediaOptions, frames: list[np.ndarray]
+) -> EpisodeOutcome:
+    root = Path(media.root)
+    update: dict[str, str] = {}
+    if media.frames:
+        write_png(root / f"{job.episode_id}_first.png", frames[0])
+        write_png(root / f"{job.episode_id}_last.png", frames[-1])
+        update["first_frame_path"] = f"{media.prefix}/{job.episode_id}_first.png"
+        update["last_frame_path"] = f"{media.prefix}/{job.episode_id}_last.png"
+    wants_video = media.video == "all" or (media.video == "failures" and not outcome.success)
+    if wants_video and len(frames) > 1:
+        write_mp4(root / f"{job.episode_id}.mp4", frames, media.fps)
+        update["video_path"] = f"{media.prefix}/{job.episode_id}.mp4"
+    return outcome.model_copy(update=update)

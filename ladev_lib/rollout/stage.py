@@ -1,0 +1,138 @@
+"""The rollout stage as a function: configuration in, ``episodes/<policy>.parquet`` out.
+
+    result = rollout_stage(cfg, "oracle", root=Path("."))
+    print(result.summary.format()); sys.exit(result.exit_code)
+
+``cfg`` is the composed configuration (``params.yaml``); every path in it is
+relative to ``root``. The per-policy outputs are the table
+``paths.episodes_dir/<label>.parquet``, media under ``paths.media_dir/<label>/``
+and the persistent store ``paths.episode_store_dir/<label>/``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ladev_lib.config import section
+from ladev_lib.errors import ConfigError
+from ladev_lib.policies import POLICIES
+from ladev_lib.policies.base import Policy
+from ladev_lib.rollout.config import PolicyConfig, RolloutConfig, executor_config
+from ladev_lib.rollout.engine import RolloutSummary, run_rollout
+from ladev_lib.rollout.executors import make_executor
+from ladev_lib.rollout.identity import code_fingerprint
+from ladev_lib.rollout.jobs import MediaOptions, WorkerSpec
+from ladev_lib.rollout.plan import PolicyIdentity, plan_episodes
+from ladev_lib.rollout.simulator import EpisodeSim, SimSetup
+from ladev_lib.store import ContentStore
+from ladev_lib.tables import (
+    CompiledSceneRow,
+    EpisodeRow,
+    InstructionRow,
+    SceneDesignRow,
+    read_table,
+    write_table,
+)
+
+
+@dataclass(frozen=True)
+class RolloutStageResult:
+    summary: RolloutSummary
+    table: Path
+    max_error_rate: float
+
+    @property
+    def exit_code(self) -> int:
+        """Non-zero only when more episodes ended in error than the configuration tolerates."""
+        return 1 if self.summary.error_rate > self.max_error_rate else 0
+
+
+def policy_config(cfg: dict[str, Any], label: str) -> PolicyConfig:
+    """``cfg["policy"][label]``, validated; an unknown label lists the configured ones."""
+    policies = cfg.get("policy") or {}
+    if label not in policies:
+        known = ", ".join(sorted(policies)) or "(none)"
+        raise ConfigError(
+            f"policy {label!r} is not configured (policy section has: {known}); "
+            f"add conf/policy/{label}.yaml or pass policy=[...,{label}]"
+        )
+    return section(policies, label, PolicyConfig)
+
+
+def _path(cfg: dict[str, Any], key: str, root: Path) -> Path:
+    paths = cfg.get("paths") or {}
+    if key not in paths:
+        raise ConfigError(f"paths.{key} is not set in the configuration")
+    return root / str(paths[key])
+
+
+def rollout_stage(
+    cfg: dict[str, Any],
+    label: str,
+    *,
+    root: Path,
+    progress: bool = True,
+    sim_factory: Callable[[SimSetup], EpisodeSim] | None = None,
+    policy_factory: Callable[..., Policy] | None = None,
+) -> RolloutStageResult:
+    """Plan, run (what the store lacks) and write the episodes of policy ``label``."""
+    pc = policy_config(cfg, label)
+    if policy_factory is None:
+        POLICIES.get(pc.name)  # fail fast: unknown name, or the extra to install
+    rollout = section(cfg, "rollout", RolloutConfig)
+    executor_cfg = executor_config(cfg)
+    sim_config = dict(cfg.get("sim") or {})
+    robot_config = dict(cfg.get("robot") or {})
+    study = str((cfg.get("study") or {}).get("name") or "study")
+
+    compiled = read_table(_path(cfg, "compiled", root), CompiledSceneRow)
+    instructions_path = _path(cfg, "instructions", root)
+    instructions = read_table(instructions_path, InstructionRow) if instructions_path.exists() else None
+    scenes_path = _path(cfg, "scenes", root)
+    scenes = read_table(scenes_path, SceneDesignRow) if scenes_path.exists() else None
+
+    module = policy_factory.__module__ if policy_factory is not None else POLICIES.module_of(pc.name)
+    code = code_fingerprint(module)
+    identity = PolicyIdentity(label=label, name=pc.name, config=pc.kwargs, code=code)
+    plans = plan_episodes(
+        compiled,
+        instructions,
+        scenes,
+        study=study,
+        policy=identity,
+        sim_config=sim_config,
+        robot_config=robot_config,
+    )
+
+    media_rel = Path(str((cfg.get("paths") or {}).get("media_dir", "data/media"))) / label
+    media = MediaOptions(
+        root=str((root / media_rel).resolve()),
+        prefix=media_rel.as_posix(),
+        video=rollout.video,
+        frames=rollout.frames,
+        fps=rollout.video_fps,
+    )
+    worker_spec = WorkerSpec(
+        policy_name=pc.name,
+        policy_config=pc.kwargs,
+        sim_config=sim_config,
+        robot_config=robot_config,
+        media=media,
+        step_timeout_s=rollout.step_timeout_s,
+        setup_timeout_s=rollout.setup_timeout_s,
+        sim_factory=sim_factory,
+        policy_factory=policy_factory,
+    )
+    store = ContentStore(_path(cfg, "episode_store_dir", root) / label)
+    executor = make_executor(executor_cfg, rollout, policy_module=module, code_fingerprint=code)
+    try:
+        rows, summary = run_rollout(
+            plans, store, executor, worker_spec, label=label, progress=progress, media_base=root
+        )
+    finally:
+        store.close()
+    table = write_table(rows, _path(cfg, "episodes_dir", root) / f"{label}.parquet", EpisodeRow)
+    return RolloutStageResult(summary, table, rollout.max_error_rate)

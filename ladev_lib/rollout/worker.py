@@ -1,0 +1,130 @@
+"""A worker: one policy and its reused simulators, running episodes one at a time.
+
+Every executor runs episodes through an :class:`EpisodeWorker`: the local pool
+keeps one per process, Ray one per actor, the serial executor one in the
+calling process. The policy is built once, on the first episode; a simulator
+is built once per (robot, control mode, camera size) and reused after.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+from typing import TYPE_CHECKING
+
+from ladev_lib.errors import LadevError
+from ladev_lib.rollout.episode import (
+    Heartbeat,
+    Limits,
+    NoHeartbeat,
+    choose_robot,
+    describe_exception,
+    run_episode,
+)
+from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
+from ladev_lib.rollout.simulator import EpisodeSim, SimSetup
+from ladev_lib.scenes import SceneSpec
+
+if TYPE_CHECKING:
+    from ladev_lib.policies.base import Policy
+
+log = logging.getLogger(__name__)
+
+
+class PolicySetupError(LadevError):
+    """The policy could not be built: a configuration problem, not an episode's failure."""
+
+
+def apply_thread_env(env: dict[str, str]) -> None:
+    """One thread per worker for the software renderer and BLAS (before they load)."""
+    for key, value in env.items():
+        os.environ[key] = value
+
+
+class EpisodeWorker:
+    """Runs episodes for one policy; keeps the policy and simulators between episodes."""
+
+    def __init__(self, spec: WorkerSpec, heartbeat: Heartbeat | None = None) -> None:
+        self.spec = spec
+        self.heartbeat: Heartbeat = heartbeat or NoHeartbeat()
+        self.limits = Limits(spec.step_timeout_s, spec.setup_timeout_s)
+        self._policy: Policy | None = None
+        self._sims: dict[tuple[str, str, tuple[int, int] | None], EpisodeSim] = {}
+
+    @property
+    def policy(self) -> Policy:
+        if self._policy is None:
+            self.heartbeat.enter("setup", 0, self.spec.setup_timeout_s)
+            factory = self.spec.policy_factory
+            try:
+                if factory is None:
+                    from ladev_lib.policies import POLICIES
+
+                    factory = POLICIES.get(self.spec.policy_name)
+                self._policy = factory(**self.spec.policy_config)
+            except Exception as exc:
+                raise PolicySetupError(
+                    f"cannot build policy {self.spec.policy_name!r} with config "
+                    f"{self.spec.policy_config}: {type(exc).__name__}: {exc}"
+                ) from exc
+        return self._policy
+
+    def sim_for(self, robot: str) -> EpisodeSim:
+        info = self.policy.info
+        image_size = info.image_size
+        if image_size is None and self.spec.media.needs_camera:
+            size = self.spec.sim_config.get("image_size") or (256, 256)
+            image_size = (int(size[0]), int(size[1]))
+        key = (robot, info.control_mode, image_size)
+        sim = self._sims.get(key)
+        if sim is None:
+            setup = SimSetup(
+                sim_config=self.spec.sim_config,
+                robot_config=self.spec.robot_config,
+                robot=robot,
+                control_mode=info.control_mode,
+                image_size=image_size,
+            )
+            sim = self._sims[key] = self.spec.resolved_sim_factory()(setup)
+        return sim
+
+    def robot_for(self, job: EpisodeJob) -> str:
+        """The robot ``job`` runs with: the scene's, or the policy's first if it cannot drive it."""
+        spec = SceneSpec.model_validate_json(job.spec_json)
+        return choose_robot(spec.robot, self.policy.info.robots)
+
+    def run(self, job: EpisodeJob) -> EpisodeOutcome:
+        """Run one episode. Raises :class:`PolicySetupError` only when the policy cannot be built."""
+        policy = self.policy
+        robot = self.robot_for(job)
+        try:
+            sim = self.sim_for(robot)
+        except Exception as exc:  # noqa: BLE001 - a simulator that cannot be built fails this episode
+            return EpisodeOutcome.failed("error", robot, describe_exception("simulator", exc))
+        try:
+            outcome = run_episode(
+                sim, policy, job, self.spec.media, robot=robot, heartbeat=self.heartbeat, limits=self.limits
+            )
+        finally:
+            self.heartbeat.enter("idle", 0, float("inf"))
+        if outcome.status == "error" and (outcome.error or "").startswith("simulator"):
+            # A simulator that raised may be left half-built: the next episode gets a fresh one.
+            self._drop_sim(sim)
+        return outcome
+
+    def _drop_sim(self, sim: EpisodeSim) -> None:
+        for key, value in list(self._sims.items()):
+            if value is sim:
+                del self._sims[key]
+        try:
+            sim.close()
+        except Exception as exc:  # noqa: BLE001 - a broken simulator may fail to close; it is discarded
+            log.warning("closing a failed simulator raised %s: %s", type(exc).__name__, exc)
+
+    def close(self) -> None:
+        for sim in self._sims.values():
+            sim.close()
+        self._sims.clear()
+        if self._policy is not None:
+            self._policy.close()
+            self._policy = None
