@@ -1,0 +1,222 @@
+"""Top-down grasps for a parallel gripper, chosen from an object's surface points.
+
+A grasp is a TCP position, a horizontal closing direction and the opening the
+fingers need. Candidates are scored on the object's own shape: for every
+closing direction (15 degree steps) and a few centres along the object's long
+axis, the points in the vertical slab the fingers sweep must fit between the
+open fingers, something must lie between the finger pads, the palm must stay
+above the object's top, and the fingers must not land on a neighbour. That one
+rule covers cans (grasped near the top), boxes (across the narrow side), fruit
+(above the equator where the sphere is narrower than the opening), and thin
+things lying down (spoons, markers, bananas: across their local width).
+
+All lengths are metres; the gripper numbers are the Panda hand's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import sapien
+
+MAX_OPENING_M = 0.08
+"""Distance between the Panda finger pads when fully open."""
+GRASP_CLEARANCE_M = 0.002
+"""Room left between the open fingers and the object (each side, both together)."""
+OPENING_MARGIN_M = 0.018
+"""How much wider than the object the fingers open before coming down."""
+# The Panda finger's collision boxes, measured in the TCP frame: a 1.5 cm thick pad
+# section up to 2 cm above the TCP, a 2.6 cm thick knuckle from there to the palm.
+FINGER_HALF_WIDTH_M = 0.011
+"""Half the finger width, across the closing direction."""
+FINGER_PAD_THICKNESS_M = 0.015
+FINGER_KNUCKLE_THICKNESS_M = 0.026
+FINGER_KNUCKLE_ABOVE_TCP_M = 0.02
+TIP_BELOW_TCP_M = 0.01
+"""Fingertips reach this far below the TCP (panda_hand_tcp)."""
+PAD_HALF_HEIGHT_M = 0.009
+"""Half the height of the finger pads around the TCP."""
+PALM_ABOVE_TCP_M = 0.037
+"""The palm's underside is this far above the TCP: the deepest an object may enter."""
+PALM_HALF_LENGTH_M = 0.104
+PALM_HALF_WIDTH_M = 0.032
+TABLE_CLEARANCE_M = 0.016
+"""Lowest TCP height above the object's bottom (keeps the fingertips off the table)."""
+NEIGHBOUR_CLEARANCE_M = 0.004
+"""Gap kept between the hand and another object."""
+YAW_STEP_DEG = 15
+
+
+@dataclass(frozen=True)
+class Grasp:
+    """A top-down grasp: TCP position, closing direction and finger opening."""
+
+    position: np.ndarray
+    """(3,) world TCP position at the grasp."""
+    closing: np.ndarray
+    """(3,) unit horizontal vector from one finger to the other."""
+    width_m: float
+    """Object width between the pads."""
+    opening_m: float
+    """Distance between the pads to open to before descending."""
+    score: float
+    """Lower is better."""
+
+    def pose(self) -> sapien.Pose:
+        """TCP pose: approaching straight down, fingers closing along ``closing``."""
+        return top_down_pose(self.position, self.closing)
+
+    def flipped(self) -> Grasp:
+        """The same grasp with the hand turned half a turn (the fingers swap sides)."""
+        return Grasp(self.position, -self.closing, self.width_m, self.opening_m, self.score)
+
+
+def top_down_pose(position: np.ndarray, closing: np.ndarray) -> sapien.Pose:
+    """TCP pose whose z axis points down and y axis along ``closing`` (Panda convention)."""
+    approach = np.array([0.0, 0.0, -1.0])
+    closing = np.asarray(closing, dtype=float).copy()
+    closing[2] = 0.0
+    closing /= np.linalg.norm(closing)
+    ortho = np.cross(closing, approach)
+    matrix = np.eye(4)
+    matrix[:3, :3] = np.stack([ortho, closing, approach], axis=1)
+    matrix[:3, 3] = position
+    return sapien.Pose(matrix)
+
+
+def closing_of(pose: sapien.Pose) -> np.ndarray:
+    """The closing direction (TCP y axis) of a TCP pose."""
+    return np.asarray(pose.to_transformation_matrix()[:3, 1], dtype=float)
+
+
+def _wrist_turn(closing_xy: np.ndarray, current_xy: np.ndarray) -> float:
+    """Rotation (rad) from the current closing direction to ``closing_xy``, either sign."""
+    cos = float(np.clip(abs(closing_xy @ current_xy), -1.0, 1.0))
+    return float(np.arccos(cos))
+
+
+def top_down_grasps(
+    points: np.ndarray,
+    obstacles: np.ndarray | None = None,
+    current_closing: np.ndarray | None = None,
+    support_z: float | None = None,
+) -> list[Grasp]:
+    """Feasible top-down grasps of the object sampled by ``points``, best first.
+
+    ``obstacles`` are points of every other object (for finger clearance);
+    ``current_closing`` the gripper's present closing direction (less wrist turn is
+    preferred); ``support_z`` the height of what the object rests on (default: its
+    own bottom).
+    """
+    from ladev_lib.policies.geometry import footprint_rectangle
+
+    pts = np.asarray(points, dtype=float)
+    xy, z = pts[:, :2], pts[:, 2]
+    bottom = float(z.min()) if support_z is None else float(support_z)
+    centre, axes, half = footprint_rectangle(xy)
+    current = np.array([0.0, 1.0]) if current_closing is None else np.asarray(current_closing[:2])
+    current = current / (np.linalg.norm(current) + 1e-12)
+    obst = None if obstacles is None or len(obstacles) == 0 else np.asarray(obstacles, float)
+
+    # Centres along the long axis: elongated things are held near, not only at, the middle.
+    reach = min(0.03, 0.5 * float(half[0] - half[1]))
+    offsets = np.arange(0.0, reach + 1e-9, 0.01) if reach >= 0.01 else np.zeros(1)
+    offsets = np.unique(np.concatenate([offsets, -offsets]))
+    max_width = MAX_OPENING_M - GRASP_CLEARANCE_M
+
+    # A fixed fan of closing directions, plus the object's own sides (boxes are held square).
+    side = float(np.arctan2(axes[1][1], axes[1][0]))
+    yaws = np.concatenate([np.deg2rad(np.arange(0, 180, YAW_STEP_DEG)), [side, side + np.pi / 2]])
+    grasps: list[Grasp] = []
+    for yaw in yaws:
+        c = np.array([np.cos(yaw), np.sin(yaw)])
+        o = np.array([-c[1], c[0]])
+        for off in offsets:
+            grasp = _evaluate(xy, z, centre + off * axes[0], c, o, bottom, max_width, obst)
+            if grasp is None:
+                continue
+            turn = _wrist_turn(c, current)
+            score = 4.0 * abs(off) + 2.0 * grasp.width_m + 0.02 * turn
+            # Of the two equivalent hand orientations, the one nearer the current one.
+            closing = grasp.closing if c @ current >= 0 else -grasp.closing
+            grasps.append(Grasp(grasp.position, closing, grasp.width_m, grasp.opening_m, score))
+    grasps.sort(key=lambda g: g.score)
+    return grasps
+
+
+def _evaluate(
+    xy: np.ndarray,
+    z: np.ndarray,
+    centre: np.ndarray,
+    c: np.ndarray,
+    o: np.ndarray,
+    bottom: float,
+    max_width: float,
+    obstacles: np.ndarray | None,
+) -> Grasp | None:
+    """The grasp with fingers closing along ``c`` through ``centre``, or None if none fits."""
+    rel = xy - centre
+    along_c, along_o = rel @ c, rel @ o
+    in_slab = np.abs(along_o) <= FINGER_HALF_WIDTH_M + 0.004
+    if not in_slab.any():
+        return None
+    under_palm = (np.abs(along_o) <= PALM_HALF_WIDTH_M) & (np.abs(along_c) <= PALM_HALF_LENGTH_M)
+    palm_top = float(z[under_palm].max())
+    slab_top = float(z[in_slab].max())
+    # As deep as the palm and the table allow; higher up where the object is too wide
+    # (a sphere is narrower above its equator).
+    deepest = max(bottom + TABLE_CLEARANCE_M, palm_top - (PALM_ABOVE_TCP_M - 0.008))
+    highest = slab_top + PAD_HALF_HEIGHT_M - 0.008  # the pads must still overlap the object
+    for tcp_z in np.arange(deepest, highest + 1e-9, 0.005):
+        swept = in_slab & (z >= tcp_z - TIP_BELOW_TCP_M)
+        pads = in_slab & (np.abs(z - tcp_z) <= PAD_HALF_HEIGHT_M)
+        if not pads.any():
+            continue
+        lo, hi = float(along_c[swept].min()), float(along_c[swept].max())
+        if hi - lo <= max_width:
+            break
+    else:
+        return None
+    tcp_z = float(tcp_z)
+    width = hi - lo
+    mid = 0.5 * (lo + hi)
+    grasp_xy = centre + mid * c
+    opening = min(MAX_OPENING_M, width + OPENING_MARGIN_M)
+    if obstacles is not None and _fingers_hit(obstacles, grasp_xy, c, o, tcp_z, opening):
+        return None
+    position = np.array([grasp_xy[0], grasp_xy[1], tcp_z])
+    return Grasp(position, np.array([c[0], c[1], 0.0]), width, opening, 0.0)
+
+
+def _fingers_hit(
+    obstacles: np.ndarray,
+    grasp_xy: np.ndarray,
+    c: np.ndarray,
+    o: np.ndarray,
+    tcp_z: float,
+    opening: float,
+) -> bool:
+    """True if an obstacle point lies where the open hand (plus clearance) would go.
+
+    The hand is two fingers from the tips to the palm, the space between them, and
+    the palm with everything above it (the hand comes straight down).
+    """
+    rel = obstacles[:, :2] - grasp_xy
+    along_c, along_o = np.abs(rel @ c), np.abs(rel @ o)
+    zs = obstacles[:, 2]
+    m = NEIGHBOUR_CLEARANCE_M
+    near = along_o <= FINGER_HALF_WIDTH_M + m
+    knuckle_z = tcp_z + FINGER_KNUCKLE_ABOVE_TCP_M
+    pads = (
+        near
+        & (zs >= tcp_z - TIP_BELOW_TCP_M - m)
+        & (along_c <= opening / 2 + FINGER_PAD_THICKNESS_M + m)
+    )
+    knuckles = near & (zs >= knuckle_z) & (along_c <= opening / 2 + FINGER_KNUCKLE_THICKNESS_M + m)
+    palm = (
+        (zs >= tcp_z + PALM_ABOVE_TCP_M - m)
+        & (along_c <= PALM_HALF_LENGTH_M + m)
+        & (along_o <= PALM_HALF_WIDTH_M + m)
+    )
+    return bool((pads | knuckles | palm).any())

@@ -1,0 +1,172 @@
+"""Arm motion planning for the Panda with mplib: screw motions first, RRT when they collide.
+
+Works in the robot's base frame internally. mplib 0.1.1 takes a base pose, but
+places attached objects (the grasped item) as if the base were at the origin;
+planning in the base frame sidesteps that, so we set its base to the identity
+and transform every pose and obstacle point ourselves.
+
+Obstacles are points (the other objects' surfaces) that mplib turns into an
+octree whose cells inflate them by up to one cell, a safety margin for free.
+The grasped object is an attached box in the TCP frame, so transport plans keep
+it clear of the scene too.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+from dataclasses import dataclass
+from typing import Any
+
+import mplib
+import numpy as np
+import sapien
+
+from ladev_lib.policies.geometry import transform_points
+
+OCTREE_RESOLUTION_M = 0.01
+JOINT_VEL_SCALE = 0.9
+JOINT_ACC_SCALE = 0.9
+RRT_TIME_S = 1.0
+END_POS_TOL_M = 0.004
+END_ROT_TOL_RAD = 0.05
+BRISK_PATH_STEPS = 120
+"""A screw path longer than this (control steps) is compared against RRT."""
+
+
+@dataclass(frozen=True)
+class ArmPath:
+    """Arm joint positions to send one per control step, and how it was found."""
+
+    qpos: np.ndarray
+    """(T, n_arm_joints)"""
+    method: str
+    """"screw" or "rrt"."""
+
+
+def _pose7(pose: sapien.Pose) -> np.ndarray:
+    return np.concatenate([np.asarray(pose.p, dtype=float), np.asarray(pose.q, dtype=float)])
+
+
+class ArmPlanner:
+    """Plans TCP motions of a ManiSkill agent among obstacle points."""
+
+    def __init__(self, agent: Any, control_timestep: float, move_group: str = "panda_hand_tcp"):
+        robot = agent.robot
+        self.time_step = float(control_timestep)
+        link_names = [link.get_name() for link in robot.get_links()]
+        joint_names = [joint.get_name() for joint in robot.get_active_joints()]
+        with contextlib.redirect_stdout(io.StringIO()):  # mplib prints SRDF notices
+            self._mp = mplib.Planner(
+                urdf=agent.urdf_path,
+                srdf=agent.urdf_path.replace(".urdf", ".srdf"),
+                user_link_names=link_names,
+                user_joint_names=joint_names,
+                move_group=move_group,
+            )
+        self._mp.set_base_pose(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]))
+        self._mp.joint_vel_limits = np.asarray(self._mp.joint_vel_limits) * JOINT_VEL_SCALE
+        self._mp.joint_acc_limits = np.asarray(self._mp.joint_acc_limits) * JOINT_ACC_SCALE
+        self._base = robot.pose.sp
+        self._base_inv = self._base.inv()
+        self.n_arm = len(self._mp.move_group_joint_indices)
+        self._has_obstacles = False
+        self._has_attached = False
+
+    # -- scene ---------------------------------------------------------------
+    def set_obstacles(self, points_world: np.ndarray | None) -> None:
+        """Replace the obstacle points (world frame); None or empty clears them."""
+        if points_world is None or len(points_world) == 0:
+            self._has_obstacles = False
+            return
+        pts = transform_points(self._base_inv, points_world)
+        self._mp.update_point_cloud(pts, OCTREE_RESOLUTION_M)
+        self._has_obstacles = True
+
+    def attach_box(self, size: np.ndarray, pose_in_tcp: sapien.Pose) -> None:
+        """Treat a box held in the gripper as part of the robot when planning."""
+        self._mp.update_attached_box(np.asarray(size, dtype=float), _pose7(pose_in_tcp))
+        self._has_attached = True
+
+    def detach(self) -> None:
+        self._has_attached = False
+
+    # -- queries -------------------------------------------------------------
+    def _to_base(self, pose_world: sapien.Pose) -> np.ndarray:
+        return _pose7(self._base_inv * pose_world)
+
+    def _flags(self, avoid: bool) -> dict[str, bool]:
+        return {
+            "use_point_cloud": avoid and self._has_obstacles,
+            "use_attach": avoid and self._has_attached,
+        }
+
+    def screw(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
+        """A straight screw motion of the TCP to ``goal`` (world), or None if it collides."""
+        result = self._mp.plan_screw(
+            self._to_base(goal),
+            np.asarray(qpos, dtype=float).copy(),
+            time_step=self.time_step,
+            wrt_world=False,
+            **self._flags(avoid),
+        )
+        if result["status"] != "Success":
+            return None
+        path = np.asarray(result["position"])
+        # mplib integrates the screw with the Jacobian and never checks where it ends;
+        # near a singularity it drifts by centimetres.
+        if not self._ends_at(qpos, path[-1], goal):
+            return None
+        return ArmPath(path, "screw")
+
+    def tcp_pose(self, qpos: np.ndarray) -> sapien.Pose:
+        """Forward kinematics: the TCP pose (world) at this joint configuration."""
+        model = self._mp.pinocchio_model
+        model.compute_forward_kinematics(self._mp.pad_qpos(np.asarray(qpos, dtype=float).copy()))
+        p = model.get_link_pose(self._mp.link_name_2_idx[self._mp.move_group])
+        return self._base * sapien.Pose(p[:3], p[3:])
+
+    def _ends_at(self, qpos: np.ndarray, arm_q: np.ndarray, goal: sapien.Pose) -> bool:
+        full = np.asarray(qpos, dtype=float).copy()
+        full[: self.n_arm] = arm_q
+        end = self.tcp_pose(full)
+        pos_err = float(np.linalg.norm(np.asarray(end.p) - np.asarray(goal.p)))
+        dot = abs(float(np.dot(end.q, goal.q)))
+        rot_err = 2 * float(np.arccos(min(1.0, dot)))
+        return pos_err <= END_POS_TOL_M and rot_err <= END_ROT_TOL_RAD
+
+    def rrt(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
+        """A collision-free RRT-Connect path to ``goal`` (world), or None."""
+        with contextlib.redirect_stdout(io.StringIO()):  # "Invalid start state!" etc.
+            result = self._mp.plan_qpos_to_pose(
+                self._to_base(goal),
+                np.asarray(qpos, dtype=float).copy(),
+                time_step=self.time_step,
+                planning_time=RRT_TIME_S,
+                wrt_world=False,
+                **self._flags(avoid),
+            )
+        if result["status"] != "Success":
+            return None
+        return ArmPath(np.asarray(result["position"]), "rrt")
+
+    def plan(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
+        """Screw motion if it is free and brisk, else the quicker of it and an RRT path.
+
+        A screw motion that passes near a singularity (the arm stretched out) is slowed
+        down by the time parametrisation to hundreds of steps; RRT then does better.
+        """
+        screw = self.screw(qpos, goal, avoid)
+        if screw is not None and len(screw.qpos) <= BRISK_PATH_STEPS:
+            return screw
+        rrt = self.rrt(qpos, goal, avoid)
+        options = [p for p in (screw, rrt) if p is not None]
+        return min(options, key=lambda p: len(p.qpos)) if options else None
+
+    def reachable(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> bool:
+        """True if some joint configuration reaches ``goal`` without collision."""
+        flags = self._flags(avoid)
+        self._mp.planning_world.set_use_point_cloud(flags["use_point_cloud"])
+        self._mp.planning_world.set_use_attach(flags["use_attach"])
+        status, _ = self._mp.IK(self._to_base(goal), np.asarray(qpos, dtype=float).copy())
+        return bool(status == "Success")

@@ -1,0 +1,431 @@
+"""Motion skills for the Panda: pick an object and put it on, in, or near another.
+
+    skill = TaskSkill(env.unwrapped, "put_on", "green_cube", "plate")
+    for action in skill:              # one pd_joint_pos action per control step
+        env.step(action)
+    skill.outcome                     # status "done" | "failed", reason, attempts
+
+``TaskSkill`` is a small state machine written as a generator: each phase
+(approach, descend, grasp, lift, carry, lower, release, retreat) is planned from
+the state the simulator is in when the phase starts, so the plan follows the
+world between phases. It re-grasps when the object slips or lands wrong, up to
+``max_attempts`` times. The caller steps the simulator between actions.
+
+What it needs from the env (a ManiSkill env, unwrapped): ``agent`` (Panda with
+``robot``, ``tcp``, ``is_grasping``), ``objects`` (name -> Actor) and
+``control_timestep``. It never reads an instruction: the task type and object
+names come from the caller (the oracle reads them from the scene spec; the
+grounded policy from language).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+import sapien
+
+from ladev_lib.policies.geometry import ObjectGeometry
+from ladev_lib.policies.grasping import OPENING_MARGIN_M, Grasp, closing_of, top_down_grasps
+from ladev_lib.policies.placing import (
+    HeldObject,
+    Placement,
+    finger_points,
+    place_in,
+    place_near,
+    place_on,
+)
+from ladev_lib.policies.planner import BRISK_PATH_STEPS, ArmPath, ArmPlanner
+
+TaskType = Literal["pick_up", "move_near", "put_on", "put_in"]
+TASK_TYPES: tuple[str, ...] = ("pick_up", "move_near", "put_on", "put_in")
+
+PRE_GRASP_HEIGHT_M = 0.08
+"""Approach ends this far above the grasp, then the hand comes straight down."""
+CARRY_CLEARANCE_M = 0.05
+"""The carried object's bottom passes this far above every other object's top."""
+LIFT_HEIGHT_M = 0.12
+"""pick_up lifts the object's bottom this far."""
+RELEASE_GAP_M = 0.005
+"""move_near: the object is let go this far above the table."""
+RETREAT_HEIGHT_M = 0.08
+GRASP_CANDIDATES = 8
+PLACE_CANDIDATES = 8
+CLOSE_STEPS = 10
+OPEN_STEPS = 6
+HOLD_STEPS = 8
+SETTLE_STEPS = 10
+MAX_SETTLE_STEPS = 20
+JOINT_TOLERANCE_RAD = 0.02
+
+
+@dataclass
+class SkillOutcome:
+    """How a skill ended (or where it is)."""
+
+    status: Literal["running", "done", "failed"] = "running"
+    reason: str = ""
+    phase: str = "start"
+    attempts: int = 0
+    log: list[str] = field(default_factory=list)
+
+
+class SkillFailure(Exception):
+    """A phase that cannot be planned; the message says why."""
+
+
+class TaskSkill:
+    """Solve one task in a ManiSkill Panda env, one ``pd_joint_pos`` action at a time."""
+
+    def __init__(
+        self,
+        env: Any,
+        task_type: str,
+        source: str,
+        target: str | None = None,
+        *,
+        region: tuple[tuple[float, float], tuple[float, float]] | None = None,
+        max_attempts: int = 3,
+    ) -> None:
+        if task_type not in TASK_TYPES:
+            raise ValueError(f"task_type must be one of {', '.join(TASK_TYPES)}, got {task_type!r}")
+        if task_type != "pick_up" and target is None:
+            raise ValueError(f"{task_type} needs a target object")
+        objects = env.objects
+        for role, name in (("source", source), ("target", target)):
+            if name is not None and name not in objects:
+                raise KeyError(f"{role} {name!r} is not in the scene (objects: {', '.join(objects)})")
+        self.env = env
+        self.agent = env.agent
+        self.task_type = task_type
+        self.source = source
+        self.target = target
+        self.max_attempts = max_attempts
+        self.outcome = SkillOutcome()
+        self.planner = ArmPlanner(self.agent, env.control_timestep)
+        self._gripper = _GripperMap.of(self.agent)
+        self._arm_target = self._qpos()[: self.planner.n_arm]
+        self._gripper_action = self._gripper.action(self._gripper.max_opening)
+        start = self._geometries()
+        self.table_z = min(g.bottom_z for g in start.values())
+        self.region = region or _region_around(start)
+        self._start_bottom = start[source].bottom_z
+        self._actions = self._run()
+
+    # -- iteration -----------------------------------------------------------
+    def __iter__(self) -> Iterator[np.ndarray]:
+        return self._actions
+
+    def __next__(self) -> np.ndarray:
+        return next(self._actions)
+
+    # -- state ---------------------------------------------------------------
+    def _qpos(self) -> np.ndarray:
+        return np.asarray(self.agent.robot.get_qpos()[0].cpu().numpy(), dtype=float)
+
+    def _tcp(self) -> sapien.Pose:
+        return self.agent.tcp.pose.sp
+
+    def _geometries(self) -> dict[str, ObjectGeometry]:
+        return {n: ObjectGeometry.of_actor(n, a) for n, a in self.env.objects.items()}
+
+    def _holding(self) -> bool:
+        return bool(self.agent.is_grasping(self.env.objects[self.source])[0])
+
+    def _note(self, text: str) -> None:
+        self.outcome.log.append(f"[{self.outcome.phase}] {text}")
+
+    # -- action streams ------------------------------------------------------
+    def _action(self) -> np.ndarray:
+        return np.concatenate([self._arm_target, [self._gripper_action]]).astype(np.float32)
+
+    def _follow(self, path: ArmPath) -> Iterator[np.ndarray]:
+        for q in path.qpos:
+            self._arm_target = np.asarray(q, dtype=float)
+            yield self._action()
+        for _ in range(MAX_SETTLE_STEPS):  # let the PD controller catch up
+            if np.max(np.abs(self._qpos()[: self.planner.n_arm] - self._arm_target)) < JOINT_TOLERANCE_RAD:
+                break
+            yield self._action()
+
+    def _gripper_steps(self, opening: float, steps: int) -> Iterator[np.ndarray]:
+        self._gripper_action = self._gripper.action(opening)
+        for _ in range(steps):
+            yield self._action()
+
+    def _wait(self, steps: int) -> Iterator[np.ndarray]:
+        for _ in range(steps):
+            yield self._action()
+
+    def _plan_from(self, qpos: np.ndarray, goal: sapien.Pose, *, avoid: bool, what: str) -> ArmPath:
+        path = self.planner.plan(qpos, goal, avoid)
+        if path is None:
+            raise SkillFailure(f"no collision-free path to {what} at {np.round(goal.p, 3).tolist()}")
+        self._note(f"{what}: {path.method}, {len(path.qpos)} steps")
+        return path
+
+    def _straight(self, goal: sapien.Pose, what: str, obstacles: np.ndarray,
+                  held: ObjectGeometry | None = None) -> ArmPath:
+        """Straight to ``goal``; around the obstacles (with what is held) if straight is blocked."""
+        path = self.planner.screw(self._qpos(), goal, avoid=False)
+        if path is None or len(path.qpos) > BRISK_PATH_STEPS:
+            # Joint limits or a near-singular stretch on the straight line: go around.
+            self.planner.set_obstacles(obstacles)
+            if held is not None:
+                self._attach(held)
+            around = self.planner.rrt(self._qpos(), goal, avoid=True)
+            self.planner.detach()
+            if around is not None and (path is None or len(around.qpos) < len(path.qpos)):
+                path = around
+        if path is None:
+            raise SkillFailure(f"no path to {what} at {np.round(goal.p, 3).tolist()}")
+        self._note(f"{what}: {path.method}, {len(path.qpos)} steps")
+        return path
+
+    def _padded(self, arm_q: np.ndarray) -> np.ndarray:
+        q = self._qpos()
+        q[: self.planner.n_arm] = arm_q
+        return q
+
+    # -- the task ------------------------------------------------------------
+    def _run(self) -> Iterator[np.ndarray]:
+        reason = ""
+        for attempt in range(1, self.max_attempts + 1):
+            self.outcome.attempts = attempt
+            try:
+                if not self._holding():
+                    yield from self._pick()
+                if self.task_type == "pick_up":
+                    self._phase("hold")
+                    yield from self._wait(HOLD_STEPS)
+                    if self._holding():
+                        return self._finish()
+                    reason = f"{self.source} slipped out of the gripper while held"
+                else:
+                    yield from self._place()
+                    reason = self._placed_wrong()
+                    if not reason:
+                        return self._finish()
+            except SkillFailure as exc:
+                reason = str(exc)
+            self._note(f"attempt {attempt} failed: {reason}")
+            if self._holding() or self._gripper_action < self._gripper.action(self._gripper.max_opening):
+                yield from self._gripper_steps(self._gripper.max_opening, OPEN_STEPS)
+                yield from self._retreat()
+        self.outcome.status = "failed"
+        self.outcome.reason = reason or "gave up"
+        return None
+
+    def _phase(self, name: str) -> None:
+        self.outcome.phase = name
+
+    def _finish(self) -> None:
+        self.outcome.status = "done"
+        self._phase("done")
+
+    def _retreat(self) -> Iterator[np.ndarray]:
+        self._phase("retreat")
+        up = sapien.Pose([0.0, 0.0, RETREAT_HEIGHT_M]) * self._tcp()
+        path = self.planner.screw(self._qpos(), up, avoid=False)
+        if path is not None:
+            yield from self._follow(path)
+
+    # -- pick ----------------------------------------------------------------
+    def _pick(self) -> Iterator[np.ndarray]:
+        self._phase("approach")
+        geoms = self._geometries()
+        src = geoms[self.source]
+        others = [g.points for n, g in geoms.items() if n != self.source]
+        obstacles = np.vstack(others) if others else np.zeros((0, 3))
+        grasps = top_down_grasps(src.points, obstacles, closing_of(self._tcp()))
+        if not grasps:
+            raise SkillFailure(f"no top-down grasp of {self.source} fits the gripper here")
+        self.planner.detach()
+        self.planner.set_obstacles(np.vstack([obstacles, src.points]))
+        qpos = self._qpos()
+        chosen: tuple[Grasp, ArmPath, ArmPath] | None = None
+        options = [g for best in grasps[:GRASP_CANDIDATES] for g in (best, best.flipped())]
+        for grasp in options:
+            pose = grasp.pose()
+            if not self.planner.reachable(qpos, pose, avoid=False):
+                continue
+            pre = sapien.Pose([0.0, 0.0, PRE_GRASP_HEIGHT_M]) * pose
+            approach = self.planner.plan(qpos, pre, avoid=True)
+            if approach is None:
+                continue
+            descend = self.planner.screw(self._padded(approach.qpos[-1]), pose, avoid=False)
+            if descend is None:
+                continue
+            chosen = (grasp, approach, descend)
+            break
+        if chosen is None:
+            raise SkillFailure(
+                f"none of {min(len(grasps), GRASP_CANDIDATES)} grasps of {self.source} is reachable "
+                "without collision"
+            )
+        grasp, approach, descend = chosen
+        self._note(f"grasp at {np.round(grasp.position, 3).tolist()} width {grasp.width_m:.3f} "
+                   f"via {approach.method}")
+        self._gripper_action = self._gripper.action(grasp.opening_m)
+        yield from self._follow(approach)
+        self._phase("descend")
+        yield from self._follow(descend)
+        self._phase("grasp")
+        yield from self._gripper_steps(self._gripper.min_opening, CLOSE_STEPS)
+        self._phase("lift")
+        tcp = self._tcp()
+        depth = float(tcp.p[2]) - src.bottom_z
+        if self.task_type == "pick_up":
+            lift_z = src.bottom_z + LIFT_HEIGHT_M + depth
+        else:
+            lift_z = self._carry_height(geoms, depth)
+        up = sapien.Pose([0.0, 0.0, lift_z - float(tcp.p[2])]) * tcp
+        yield from self._follow(self._straight(up, "lift", obstacles, held=src))
+        if not self._holding():
+            raise SkillFailure(f"grasp of {self.source} did not hold (width {grasp.width_m:.3f} m)")
+
+    def _carry_height(self, geoms: dict[str, ObjectGeometry], depth: float) -> float:
+        tops = [g.top_z for n, g in geoms.items() if n != self.source]
+        highest = max(tops) if tops else self.table_z
+        return max(highest + CARRY_CLEARANCE_M + depth, float(self._tcp().p[2]) + 0.05)
+
+    # -- place ---------------------------------------------------------------
+    def _held(self, src: ObjectGeometry) -> HeldObject:
+        tcp = self._tcp()
+        opening = self._release_opening(src)
+        fingers = finger_points(closing_of(tcp), opening)
+        return HeldObject(src.points - np.asarray(tcp.p), fingers)
+
+    def _release_opening(self, src: ObjectGeometry) -> float:
+        # Open a little wider than the object, not fully: the fingers stay clear of neighbours.
+        closing = closing_of(self._tcp())[:2]
+        across = src.points[:, :2] @ closing
+        width = float(across.max() - across.min())
+        return min(self._gripper.max_opening, width + OPENING_MARGIN_M)
+
+    def _place(self) -> Iterator[np.ndarray]:
+        assert self.target is not None
+        self._phase("carry")
+        geoms = self._geometries()
+        src, tgt = geoms[self.source], geoms[self.target]
+        others = {n: g.points for n, g in geoms.items() if n not in (self.source, self.target)}
+        other_pts = np.vstack(list(others.values())) if others else np.zeros((0, 3))
+        everything = np.vstack([tgt.points, other_pts])
+        held = self._held(src)
+        tcp = self._tcp()
+        carry_z = float(tcp.p[2])
+        candidates = self._placements(held, src, tgt, others, other_pts, carry_z)
+        if not candidates:
+            raise SkillFailure(
+                f"no free spot to put {self.source} {self.task_type.split('_')[1]} {self.target}"
+            )
+        # Plan with every other object as an obstacle and the held object as part of the hand.
+        self.planner.set_obstacles(everything)
+        self._attach(src)
+        qpos = self._qpos()
+        chosen: tuple[sapien.Pose, ArmPath] | None = None
+        for placement in candidates[:PLACE_CANDIDATES]:
+            q = (sapien.Pose(q=_yaw_quat(placement.yaw)) * tcp).q
+            release_z = placement.tcp_z
+            if release_z is None:  # on the table
+                release_z = self.table_z + held.turned(placement.yaw).bottom_below_tcp + RELEASE_GAP_M
+            release = sapien.Pose([placement.tcp_xy[0], placement.tcp_xy[1], release_z], q)
+            if not self.planner.reachable(qpos, release, avoid=False):
+                continue
+            above = sapien.Pose([placement.tcp_xy[0], placement.tcp_xy[1], carry_z], q)
+            carry = self.planner.plan(qpos, above, avoid=True)
+            if carry is not None:
+                chosen = (release, carry)
+                break
+        self.planner.detach()
+        if chosen is None:
+            raise SkillFailure(
+                f"none of {min(len(candidates), PLACE_CANDIDATES)} spots to put {self.source} "
+                f"{self.task_type.split('_')[1]} {self.target} is reachable"
+            )
+        release, carry = chosen
+        self._note(f"carry: {carry.method}, {len(carry.qpos)} steps, release at "
+                   f"{np.round(release.p, 3).tolist()}")
+        yield from self._follow(carry)
+        if not self._holding():
+            raise SkillFailure(f"{self.source} fell while carried")
+        self._phase("lower")
+        yield from self._follow(self._straight(release, "lower", everything, held=src))
+        self._phase("release")
+        yield from self._gripper_steps(self._release_opening(src), OPEN_STEPS)
+        yield from self._retreat()
+        yield from self._wait(SETTLE_STEPS)
+
+    def _placements(self, held: HeldObject, src: ObjectGeometry, tgt: ObjectGeometry,
+                    others: dict[str, np.ndarray], other_pts: np.ndarray,
+                    carry_z: float) -> list[Placement]:
+        if self.task_type == "put_on":
+            return place_on(held, tgt.points, other_pts, carry_z)
+        if self.task_type == "put_in":
+            return place_in(held, tgt.points, other_pts, carry_z)
+        src_xy = src.points[:, :2].mean(axis=0)
+        return place_near(held, src_xy, tgt.points, others, self.region)
+
+    def _attach(self, src: ObjectGeometry) -> None:
+        tcp = self._tcp()
+        local = (src.points - np.asarray(tcp.p)) @ tcp.to_transformation_matrix()[:3, :3]
+        lo, hi = local.min(axis=0), local.max(axis=0)
+        self.planner.attach_box(hi - lo, sapien.Pose((lo + hi) / 2))
+
+    def _placed_wrong(self) -> str:
+        """Why the object is not where the task wants it; empty if it looks right."""
+        assert self.target is not None
+        geoms = self._geometries()
+        src, tgt = geoms[self.source], geoms[self.target]
+        centre = src.points[:, :2].mean(axis=0)
+        t_lo, t_hi = tgt.xy.min(axis=0), tgt.xy.max(axis=0)
+        over_target = bool(np.all(centre >= t_lo) and np.all(centre <= t_hi))
+        if self.task_type == "put_on" and not (over_target and src.bottom_z > tgt.top_z - 0.02):
+            return f"{self.source} did not come to rest on {self.target}"
+        if self.task_type == "put_in" and not (over_target and src.bottom_z < tgt.top_z):
+            return f"{self.source} did not end inside {self.target}"
+        if self.task_type == "move_near" and src.bottom_z > self.table_z + 0.02:
+            return f"{self.source} did not come to rest on the table"
+        return ""
+
+
+@dataclass(frozen=True)
+class _GripperMap:
+    """Finger opening (m, between pads) <-> normalised gripper action of the mimic controller."""
+
+    lower: float
+    upper: float
+
+    @classmethod
+    def of(cls, agent: Any) -> _GripperMap:
+        ctrl = agent.controller.controllers.get("gripper")
+        cfg = getattr(ctrl, "config", None)
+        lower = float(np.atleast_1d(getattr(cfg, "lower", -0.01))[0])
+        upper = float(np.atleast_1d(getattr(cfg, "upper", 0.04))[0])
+        return cls(lower, upper)
+
+    @property
+    def max_opening(self) -> float:
+        return 2 * self.upper
+
+    @property
+    def min_opening(self) -> float:
+        """Fully closed: the controller's lower limit squeezes below zero for grip force."""
+        return 2 * self.lower
+
+    def action(self, opening: float) -> float:
+        joint = float(np.clip(opening / 2, self.lower, self.upper))
+        return 2 * (joint - self.lower) / (self.upper - self.lower) - 1
+
+
+def _yaw_quat(yaw: float) -> np.ndarray:
+    return np.array([np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)])
+
+
+def _region_around(geoms: dict[str, ObjectGeometry]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Where objects may be put down when no workspace is given: around those there now."""
+    pts = np.vstack([g.xy for g in geoms.values()])
+    lo, hi = pts.min(axis=0) - 0.1, pts.max(axis=0) + 0.1
+    return (float(lo[0]), float(hi[0])), (float(lo[1]), float(hi[1]))
