@@ -8,7 +8,9 @@ it wants one; proprioception; privileged state only if privileged) until the
 task succeeds, the policy stops, or the task's step limit. Every failure
 inside becomes an ``error`` outcome with its reason, never an exception: a
 simulator exception, a policy exception, an action with NaN/inf or the wrong
-shape. Hangs are the worker's business (a heartbeat, see :class:`Heartbeat`):
+shape. The one exception that propagates is a ``ConfigError`` while loading
+the scene (a control mode the robot lacks, a robot whose assets are missing):
+no episode could run, so the run stops with the message. Hangs are the worker's business (a heartbeat, see :class:`Heartbeat`):
 a call stuck in C code cannot be interrupted from inside its own process.
 """
 
@@ -24,6 +26,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import EpisodeContext, Policy
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, MediaOptions
 from ladev_lib.rollout.media import write_mp4, write_png
@@ -133,6 +136,8 @@ def run_episode(
         invalid = sim.invalid_reason()
         low, high = sim.action_bounds()
         max_steps = info.max_episode_steps or sim.max_steps(spec.task.type)
+    except ConfigError:
+        raise  # the configuration cannot work for any episode (e.g. a control mode the robot lacks)
     except Exception as exc:  # noqa: BLE001 - any simulator failure is this episode's error row
         clock.sim += time.perf_counter() - t
         return failed("error", describe_exception("simulator", exc))

@@ -90,7 +90,7 @@ class ManiSkillSim:
 
     def load(self, spec: SceneSpec, seed: int) -> None:
         if self._env is None:
-            from ladev_lib.sim import make_env  # type: ignore[attr-defined]  # until wt/sim lands
+            from ladev_lib.sim import make_env
 
             self._env = make_env(
                 spec,
@@ -107,25 +107,25 @@ class ManiSkillSim:
         return np.asarray(space.low, dtype=np.float64), np.asarray(space.high, dtype=np.float64)
 
     def invalid_reason(self) -> str | None:
-        from ladev_lib.sim.validity import check_validity
+        from ladev_lib.sim.validity import check_scene
 
-        verdict = check_validity(self.env)
-        return None if verdict.ok else "; ".join(verdict.reasons) or "invalid scene"
+        verdict = check_scene(self.env.unwrapped)
+        return None if verdict.valid else verdict.reason or "invalid scene"
 
     def max_steps(self, task: str) -> int:
-        from ladev_lib.sim.config import SimConfig
+        from ladev_lib.sim.robots import episode_steps
 
-        cfg = SimConfig.model_validate(self.setup.sim_config)
-        return int(cfg.max_episode_steps(task, self.setup.robot))
+        # The study's per-task lengths apply to the robot they were written for.
+        overrides = None
+        if self.setup.robot_config.get("name", self.setup.robot) == self.setup.robot:
+            overrides = self.setup.robot_config.get("max_episode_steps") or None
+        return episode_steps(self.setup.robot, task, overrides)
 
     def observe(self, *, image: bool, privileged: bool) -> Observation:
         u = self.env.unwrapped
-        agent = u.agent
-        qpos = np.asarray(agent.robot.get_qpos().cpu().numpy()).reshape(-1)
-        tcp = getattr(agent, "tcp", None)
-        tcp_pose = (
-            np.asarray(tcp.pose.raw_pose.cpu().numpy()).reshape(-1) if tcp is not None else np.zeros(0)
-        )
+        qpos = u.agent.robot.get_qpos()[0].detach().cpu().numpy().reshape(-1)
+        tcp = u.agent.robot.links_map.get(u.profile.tcp_link)
+        tcp_pose = tcp.pose.raw_pose[0].detach().cpu().numpy() if tcp is not None else np.zeros(0)
         priv = None
         if privileged:
             assert self._spec is not None

@@ -12,7 +12,7 @@ import logging
 import os
 from typing import TYPE_CHECKING
 
-from ladev_lib.errors import LadevError
+from ladev_lib.errors import ConfigError, LadevError
 from ladev_lib.rollout.episode import (
     Heartbeat,
     Limits,
@@ -31,8 +31,11 @@ if TYPE_CHECKING:
 log = logging.getLogger(__name__)
 
 
-class PolicySetupError(LadevError):
-    """The policy could not be built: a configuration problem, not an episode's failure."""
+class WorkerSetupError(LadevError):
+    """The policy or the simulator cannot be built as configured: fix the configuration.
+
+    Not an episode's failure: every episode would fail the same way, so the run stops.
+    """
 
 
 def apply_thread_env(env: dict[str, str]) -> None:
@@ -63,7 +66,7 @@ class EpisodeWorker:
                     factory = POLICIES.get(self.spec.policy_name)
                 self._policy = factory(**self.spec.policy_config)
             except Exception as exc:
-                raise PolicySetupError(
+                raise WorkerSetupError(
                     f"cannot build policy {self.spec.policy_name!r} with config "
                     f"{self.spec.policy_config}: {type(exc).__name__}: {exc}"
                 ) from exc
@@ -71,8 +74,11 @@ class EpisodeWorker:
 
     def sim_for(self, robot: str) -> EpisodeSim:
         info = self.policy.info
+        # Every policy gets a policy camera, even one that reads no image: the validity
+        # check's visibility test needs it (the same verdict for every policy), and so do
+        # the episode's frames. It renders only when asked, a few times per episode.
         image_size = info.image_size
-        if image_size is None and self.spec.media.needs_camera:
+        if image_size is None:
             size = self.spec.sim_config.get("image_size") or (256, 256)
             image_size = (int(size[0]), int(size[1]))
         key = (robot, info.control_mode, image_size)
@@ -94,17 +100,21 @@ class EpisodeWorker:
         return choose_robot(spec.robot, self.policy.info.robots)
 
     def run(self, job: EpisodeJob) -> EpisodeOutcome:
-        """Run one episode. Raises :class:`PolicySetupError` only when the policy cannot be built."""
+        """Run one episode. Raises :class:`WorkerSetupError` only for a configuration no episode can run with."""
         policy = self.policy
         robot = self.robot_for(job)
         try:
             sim = self.sim_for(robot)
+        except ConfigError as exc:
+            raise WorkerSetupError(f"cannot build the simulator for {robot}: {exc}") from exc
         except Exception as exc:  # noqa: BLE001 - a simulator that cannot be built fails this episode
             return EpisodeOutcome.failed("error", robot, describe_exception("simulator", exc))
         try:
             outcome = run_episode(
                 sim, policy, job, self.spec.media, robot=robot, heartbeat=self.heartbeat, limits=self.limits
             )
+        except ConfigError as exc:
+            raise WorkerSetupError(f"cannot simulate with {robot}: {exc}") from exc
         finally:
             self.heartbeat.enter("idle", 0, float("inf"))
         if outcome.status == "error" and (outcome.error or "").startswith("simulator"):

@@ -31,7 +31,7 @@ from ladev_lib.rollout.executors.base import (
     hang_outcome,
 )
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
-from ladev_lib.rollout.worker import EpisodeWorker, PolicySetupError, apply_thread_env
+from ladev_lib.rollout.worker import EpisodeWorker, WorkerSetupError, apply_thread_env
 
 # Layout of the shared heartbeat array.
 _DEADLINE, _PHASE, _STEP, _LIMIT = range(4)
@@ -62,7 +62,7 @@ def _worker_main(spec: WorkerSpec, conn: mpc.Connection, beat: Any) -> None:
             try:
                 conn.send(("start", job.episode_id, worker.robot_for(job)))
                 outcome = worker.run(job)
-            except PolicySetupError as exc:
+            except WorkerSetupError as exc:
                 conn.send(("fatal", job.episode_id, str(exc)))
                 break
             conn.send(("done", job.episode_id, outcome.model_dump()))
@@ -164,7 +164,7 @@ class LocalPoolExecutor:
             slot.job = None
             on_outcome(job, EpisodeOutcome.model_validate(payload))
         elif kind == "fatal":
-            raise PolicySetupError(str(payload))
+            raise WorkerSetupError(str(payload))
         return True
 
     def _check_health(

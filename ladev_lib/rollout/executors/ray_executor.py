@@ -26,7 +26,7 @@ from typing import Any
 from ladev_lib.errors import MissingExtraError
 from ladev_lib.rollout.executors.base import CrashLedger, OnOutcome, crash_outcome, hang_outcome
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
-from ladev_lib.rollout.worker import EpisodeWorker, PolicySetupError, apply_thread_env
+from ladev_lib.rollout.worker import EpisodeWorker, WorkerSetupError, apply_thread_env
 
 _POLL_S = 0.2
 _PROGRESS_EVERY_S = 0.1
@@ -172,7 +172,7 @@ class RayExecutor:
             return
         seen = ray.get([a.fingerprint.remote(self.policy_module) for a in actors])
         if any(fp != self.expected_fingerprint for fp in seen):
-            raise PolicySetupError(
+            raise WorkerSetupError(
                 "the Ray workers run different LADEV code than this driver (code fingerprint "
                 f"{seen[0]} != {self.expected_fingerprint}); install the same version on every node"
             )
@@ -203,8 +203,8 @@ class RayExecutor:
             return
         except RayTaskError as exc:
             cause = exc.as_instanceof_cause()
-            if isinstance(cause, PolicySetupError):
-                raise PolicySetupError(str(cause).splitlines()[-1]) from None
+            if isinstance(cause, WorkerSetupError):
+                raise WorkerSetupError(str(cause).splitlines()[-1]) from None
             raise
         idle.append(entry.actor)
         on_outcome(entry.job, EpisodeOutcome.model_validate(payload))
