@@ -27,6 +27,7 @@ from ladev_lib.report.config import ReportConfig
 from ladev_lib.report.gallery import gallery_items
 from ladev_lib.report.html import (
     Figure,
+    comparison_groups,
     comparison_rows,
     html_table,
     overall_table,
@@ -217,7 +218,7 @@ def build_report(
             study=study or "(all)", summary=agg.summary,
             overall=overall_table(agg.overall, agg.policies, agg.tasks, labels, style),
             tables=[html_table(layout, style) for layout in agg.layouts],
-            comparisons=comparison_rows(agg.comparisons, labels), figures=figure_list, gallery=gallery,
+            comparisons=comparison_groups(agg.comparisons, labels), figures=figure_list, gallery=gallery,
             gallery_size=cfg.gallery.size, confidence=cfg.confidence,
             dropped_other_studies=agg.dropped_other_studies, published_note=published_note,
             files=[p.relative_to(reports_dir).as_posix() for p in written if p.is_relative_to(reports_dir)],

@@ -115,7 +115,9 @@ def _paired_rows(episodes: pl.DataFrame, confidence: float) -> list[dict[str, An
                 continue
             diff = newcombe_paired(a, c, b, d, confidence)  # level - baseline
             assert diff is not None
-            note = f"{r['unpaired']} judged episodes without a judged partner left out" if r["unpaired"] else None
+            note = (
+                f"{r['unpaired']} judged episode(s) without a judged partner left out" if r["unpaired"] else None
+            )
             rows.append(
                 dict(
                     policy=r["policy"], task=r["task"], factor=factor,
@@ -199,7 +201,9 @@ def _homogeneity_rows(cells: pl.DataFrame) -> list[dict[str, Any]]:
         for (policy, task), by_level in sorted(_level_counts(cells, factor).items()):
             if len(by_level) < 3:
                 continue  # two levels: the pairwise comparison says it all
-            levels = list(by_level)
+            baseline, others = UNPAIRED.get(factor, ("", ()))
+            canonical = [baseline, *others]
+            levels = sorted(by_level, key=lambda lv: (canonical.index(lv) if lv in canonical else len(canonical), lv))
             test = chi2_homogeneity([by_level[lv][0] for lv in levels], [by_level[lv][1] for lv in levels])
             note = None
             if test is None:

@@ -54,7 +54,7 @@ def _legend(fig: Figure, handles: list[Artist], labels: list[str], confidence: f
     rows = (len(labels) + ncol - 1) // max(ncol, 1)
     fig.text(0.99, 0.01, f"bars: {round(100 * confidence)}% Wilson interval", ha="right", va="bottom",
              fontsize=7, color="0.4")
-    fig.tight_layout(rect=(0, 0.06 + 0.045 * rows, 1, 0.93))
+    fig.tight_layout(rect=(0, 0.06 + 0.045 * rows, 1, 0.96))
 
 
 def plot_levels(

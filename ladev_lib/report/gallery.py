@@ -40,16 +40,28 @@ class GalleryItem:
 
 
 def select_failures(episodes: pl.DataFrame, size: int) -> pl.DataFrame:
-    """Up to ``size`` failed episodes, spread round-robin over (policy, task)."""
+    """Up to ``size`` failed episodes: every (policy, task) in turn, factors rotating between them.
+
+    Round r takes the r-th failure of each (policy, task, factor); within a round,
+    cell c starts with factor c (mod the number of factors), so a gallery as small
+    as the number of cells still shows several factors.
+    """
     failed = episodes.filter(pl.col("status") == "failure")
     if size == 0 or failed.is_empty():
         return failed.head(0)
+    n_factors = failed.get_column("factor").n_unique()
+    cell = pl.struct("policy", "task").rank("dense").cast(pl.Int64) - 1
+    factor = pl.col("factor").rank("dense").cast(pl.Int64) - 1
     return (
         failed.sort(["policy", "task", "factor", "level", "episode_id"])
-        .with_columns(_rank=pl.int_range(pl.len()).over(["policy", "task"]))
-        .sort(["_rank", "policy", "task"])
+        .with_columns(
+            _round=pl.int_range(pl.len()).over(["policy", "task", "factor"]),
+            _cell=cell,
+            _turn=(factor + cell * (n_factors - 1)) % n_factors,
+        )
+        .sort(["_round", "_turn", "_cell"])
         .head(size)
-        .drop("_rank")
+        .drop("_round", "_cell", "_turn")
     )
 
 

@@ -120,6 +120,23 @@ def _fmt_p(p: float | None) -> str:
     return "<0.001" if p < 0.001 else f"{p:.3f}"
 
 
+FACTOR_TITLES = {
+    "num_objects": "Number of objects: linear trend (Cochran–Armitage)",
+    "instruction": "Basic vs paraphrased instructions: paired by scene (McNemar exact)",
+    "object_set": "SimplerEnv vs YCB objects (Fisher exact)",
+    "environment": "Default vs lighting vs camera (Fisher exact; chi-squared over all three)",
+}
+
+
+def comparison_groups(comparisons: pl.DataFrame, labels: dict[str, str]) -> list[tuple[str, list[dict[str, str]]]]:
+    """Comparison rows grouped by factor, in the paper's order, with a title each."""
+    rows = comparison_rows(comparisons, labels)
+    groups: dict[str, list[dict[str, str]]] = {}
+    for row in rows:
+        groups.setdefault(row["factor"], []).append(row)
+    return [(FACTOR_TITLES.get(f, f), rs) for f, rs in groups.items()]
+
+
 def comparison_rows(comparisons: pl.DataFrame, labels: dict[str, str]) -> list[dict[str, str]]:
     out = []
     for r in comparisons.iter_rows(named=True):
@@ -162,7 +179,7 @@ def render_html(context: dict[str, Any]) -> str:
 
 def report_context(
     *, study: str, summary: StudySummary, overall: HtmlTable, tables: list[HtmlTable],
-    comparisons: list[dict[str, str]], figures: list[Figure], gallery: list[GalleryItem],
+    comparisons: list[tuple[str, list[dict[str, str]]]], figures: list[Figure], gallery: list[GalleryItem],
     gallery_size: int, confidence: float, dropped_other_studies: int, published_note: str | None,
     files: list[str],
 ) -> dict[str, Any]:

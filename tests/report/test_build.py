@@ -172,6 +172,7 @@ def test_gallery_spreads_over_policy_and_task_and_copies_frames(study, tmp_path)
     assert chosen.height == 8
     assert chosen.select("policy", "task").unique().height == 8  # 2 policies x 4 tasks, one each
     assert chosen.get_column("status").unique().to_list() == ["failure"]
+    assert chosen.get_column("factor").n_unique() >= 3  # not all from one factor
     reports, _ = build(root, inputs, "reports_copy", figures=False,
                        gallery={"size": 4, "embed_frames": False, "copy_videos": False})
     page = Collector()

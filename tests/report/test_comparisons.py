@@ -46,7 +46,7 @@ def test_an_errored_partner_removes_the_pair_and_says_so():
     )
     row = only(compare_levels(eps, success_cells(eps)), factor="instruction")
     assert row["n_baseline"] == 5
-    assert "1 judged episodes without a judged partner" in row["note"]
+    assert "1 judged episode(s) without a judged partner" in row["note"]
 
 
 def test_unpaired_object_set_comparison(known_episodes):
@@ -72,6 +72,7 @@ def test_trend_and_homogeneity_rows():
     assert trend["diff_pct"] == pytest.approx(-20.0)  # 20 points fewer per extra object, exactly linear
     env = comps.filter(pl.col("factor") == "environment")
     assert set(env.get_column("test")) == {"Fisher exact", "chi-squared homogeneity (df=2)"}
+    assert only(env, test="chi-squared homogeneity (df=2)")["comparison"] == "any difference among default, lighting, camera"
     lighting = only(env, level="lighting")
     assert lighting["diff_pct"] == pytest.approx(-50.0)
 
