@@ -239,9 +239,8 @@ def compare_levels(
         + _trend_rows(cells)
         + _homogeneity_rows(cells)
     )
-    frame = pl.DataFrame(
-        [{k: r.get(k) for k in COMPARISON_SCHEMA} for r in rows], schema=COMPARISON_SCHEMA, orient="row"
-    ) if rows else pl.DataFrame(schema=COMPARISON_SCHEMA)
+    columns = {k: [r.get(k) for r in rows] for k in COMPARISON_SCHEMA}
+    frame = pl.DataFrame(columns, schema=COMPARISON_SCHEMA)
     factor_order = {f: i for i, f in enumerate(["num_objects", "instruction", "object_set", "environment"])}
 
     def rank(column: str, order: dict[str, int]) -> pl.Expr:

@@ -182,3 +182,13 @@ def test_gallery_spreads_over_policy_and_task_and_copies_frames(study, tmp_path)
     videos = [a["href"] for t, a in page.tags if t == "a" and (a.get("href") or "").endswith(".mp4")]
     assert videos and all(v.startswith("../data/media/") and (reports / v).resolve().is_file() for v in videos)
     assert "no frame" in " ".join(page.text)  # failures without media say so
+
+
+def test_html_escapes_text_from_the_llm(study, tmp_path):
+    root, inputs = study
+    scenes = inputs.scenes.with_columns(description=pl.lit("<script>alert('x')</script> two cans & a bowl"))
+    tampered = StudyInputs(inputs.episodes, scenes, inputs.compiled, inputs.instructions)
+    reports, _ = build(root, tampered, "reports_escape", figures=False, gallery={"size": 2})
+    html = (reports / "report.html").read_text()
+    assert "<script>" not in html
+    assert "&lt;script&gt;" in html and "two cans &amp; a bowl" in html

@@ -149,6 +149,8 @@ def test_changing_a_report_option_reruns_aggregate_alone(tmp_path):
     sh(dvc, "init", "-q")
     sh(dvc, "repro", "aggregate")
     assert "up to date" in sh(dvc, "status", "aggregate").lower()
+    shown = sh(dvc, "metrics", "show")
+    assert "success_rate/oracle/pick_up" in shown and "compile_ok_rate" in shown
 
     params = yaml.safe_load((repo / "params.yaml").read_text())
     params["llm"]["model"] = "another-model"  # not a param of aggregate
