@@ -69,9 +69,15 @@ def test_bad_report_option_names_the_key():
         section({"report": {"colour": "red"}}, "report", ReportConfig)
 
 
-def test_stage_writes_what_dvc_yaml_declares(tmp_path):
-    repo = make_repo(tmp_path)
-    proc = run_stage(repo)
+@pytest.fixture(scope="module")
+def ran_repo(tmp_path_factory) -> tuple[Path, subprocess.CompletedProcess[str]]:
+    """A repository layout after the aggregate stage ran once (shared by the tests below)."""
+    repo = make_repo(tmp_path_factory.mktemp("repo"))
+    return repo, run_stage(repo)
+
+
+def test_stage_writes_what_dvc_yaml_declares(ran_repo):
+    repo, proc = ran_repo
     assert proc.returncode == 0, proc.stderr
     assert "study 'smoke'" in proc.stdout
     stage = yaml.safe_load((ROOT / "dvc.yaml").read_text())["stages"]["aggregate"]
@@ -102,9 +108,9 @@ def test_stage_fails_clearly_on_bad_config(tmp_path):
     assert "report.formats" in proc.stderr
 
 
-def test_summary_prints_report_and_headline_numbers(tmp_path, monkeypatch):
-    repo = make_repo(tmp_path)
-    assert run_stage(repo).returncode == 0
+def test_summary_prints_report_and_headline_numbers(ran_repo, monkeypatch):
+    repo, proc = ran_repo
+    assert proc.returncode == 0, proc.stderr
     monkeypatch.chdir(repo)
     result = CliRunner().invoke(cli, ["summary"])
     assert result.exit_code == 0, result.output
