@@ -16,7 +16,7 @@ ifeq ($(origin MS_ASSET_DIR), undefined)
   endif
 endif
 
-.PHONY: setup run test test-fast lint typecheck bench doctor clean-data
+.PHONY: setup run test test-fast lint typecheck bench doctor params clean-data
 
 setup:                 ## venv + pinned Python stack + a Vulkan device SAPIEN can use
 	@bash scripts/setup.sh
@@ -39,6 +39,9 @@ typecheck: setup
 
 doctor: setup
 	$(BIN)/ladev doctor
+
+params: setup          ## recompose params.yaml from conf/ (after editing conf/)
+	$(BIN)/ladev config > params.yaml
 
 bench: setup           ## benchmarks that print figures (not timed tests)
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; $(PY) $$b || exit 1; done
