@@ -4,6 +4,8 @@ SHELL := /bin/bash
 VENV ?= .venv
 PY := $(VENV)/bin/python
 BIN := $(VENV)/bin
+# dvc.yaml's stage commands call `python`: make it the project's.
+export PATH := $(abspath $(VENV))/bin:$(PATH)
 # Two software-rendering workers on two cores: one thread each.
 export LP_NUM_THREADS ?= 1
 export OMP_NUM_THREADS ?= 1
@@ -16,7 +18,7 @@ ifeq ($(origin MS_ASSET_DIR), undefined)
   endif
 endif
 
-.PHONY: setup run test test-fast lint typecheck bench doctor clean-data
+.PHONY: setup run test test-fast lint typecheck bench doctor params clean-data
 
 setup:                 ## venv + pinned Python stack + a Vulkan device SAPIEN can use
 	@bash scripts/setup.sh
@@ -26,6 +28,7 @@ run: setup             ## the main job: the default study end to end, then its h
 	$(BIN)/ladev summary
 
 test: setup            ## every test, rendering included (what CI runs)
+	@bash scripts/setup_latex.sh || echo "[latex] not installed: the pdflatex check of the LaTeX tables will be skipped"
 	$(BIN)/pytest -q
 
 test-fast: setup       ## tests that do not build simulator scenes
@@ -39,6 +42,9 @@ typecheck: setup
 
 doctor: setup
 	$(BIN)/ladev doctor
+
+params: setup          ## recompose params.yaml from conf/ (after editing conf/)
+	$(BIN)/ladev config > params.yaml
 
 bench: setup           ## benchmarks that print figures (not timed tests)
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; $(PY) $$b || exit 1; done

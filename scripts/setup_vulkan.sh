@@ -9,9 +9,41 @@
 # - Anything else, or not root: print what to install and exit non-zero.
 #
 # usage: scripts/setup_vulkan.sh [PYTHON]   (a Python with sapien installed)
+#        scripts/setup_vulkan.sh --backports-entry   (print the apt entry it would add; no changes)
 set -euo pipefail
-PY="${1:-python3}"
+APT_DIR="${LADEV_APT_DIR:-/etc/apt}"
 log() { printf '\033[1m[vulkan]\033[0m %s\n' "$*"; }
+
+# The machine's own bookworm mirror and keyring, as a deb822 bookworm-backports entry.
+backports_entry() {
+    local uri="" keyring="-"
+    if compgen -G "$APT_DIR/sources.list.d/*.sources" >/dev/null; then
+        read -r uri keyring < <(awk '
+            /^URIs:/      { uri=$2 }
+            /^Suites:/    { main=0; for (i=2;i<=NF;i++) if ($i=="bookworm") main=1 }
+            /^Signed-By:/ { key=$2 }
+            /^$/          { if (main && uri!="") { print uri, (key==""?"-":key); exit } uri=""; key=""; main=0 }
+            END           { if (main && uri!="") print uri, (key==""?"-":key) }
+        ' "$APT_DIR"/sources.list.d/*.sources) || true
+    fi
+    if [ -z "$uri" ]; then
+        uri=$(cat "$APT_DIR/sources.list" "$APT_DIR"/sources.list.d/*.list 2>/dev/null \
+              | awk '$1=="deb" { s=2; if ($2 ~ /^\[/) { while ($s !~ /\]$/) s++; s++ } if ($(s+1)=="bookworm") { print $s; exit } }') || true
+        keyring="-"
+    fi
+    [ -n "$uri" ] || return 1
+    echo "Types: deb"
+    echo "URIs: $uri"
+    echo "Suites: bookworm-backports"
+    echo "Components: main"
+    if [ "$keyring" != "-" ]; then echo "Signed-By: $keyring"; fi
+}
+
+if [ "${1:-}" = "--backports-entry" ]; then
+    backports_entry
+    exit $?
+fi
+PY="${1:-python3}"
 
 probe() { "$PY" -m ladev_lib.sim.render_probe --quiet; }
 
@@ -43,33 +75,15 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 suite_args=()
 if [ "${VERSION_CODENAME:-}" = "bookworm" ]; then
-    target=/etc/apt/sources.list.d/ladev-bookworm-backports.sources
-    if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
-        # The mirror and keyring of the machine's own bookworm entry.
-        read -r uri keyring < <(awk '
-            /^URIs:/      { uri=$2 }
-            /^Suites:/    { main=0; for (i=2;i<=NF;i++) if ($i=="bookworm") main=1 }
-            /^Signed-By:/ { key=$2 }
-            /^$/          { if (main && uri!="") { print uri, (key==""?"-":key); exit } uri=""; key=""; main=0 }
-            END           { if (main && uri!="") print uri, (key==""?"-":key) }
-        ' /etc/apt/sources.list.d/*.sources 2>/dev/null || true)
-        if [ -z "${uri:-}" ]; then
-            uri=$(awk '$1=="deb" && $3=="bookworm" {print $2; exit}' /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null || true)
-            keyring=-
-        fi
-        if [ -z "${uri:-}" ]; then
-            log "found no bookworm mirror in /etc/apt/sources.list*; add bookworm-backports by hand,"
+    target="$APT_DIR/sources.list.d/ladev-bookworm-backports.sources"
+    if ! grep -rqs "bookworm-backports" "$APT_DIR/sources.list" "$APT_DIR/sources.list.d/"; then
+        if ! entry=$(backports_entry); then
+            log "found no bookworm mirror in $APT_DIR/sources.list*; add bookworm-backports by hand,"
             log "then: apt-get install -t bookworm-backports mesa-vulkan-drivers libvulkan1"
             exit 1
         fi
-        log "adding bookworm-backports from $uri"
-        {
-            echo "Types: deb"
-            echo "URIs: $uri"
-            echo "Suites: bookworm-backports"
-            echo "Components: main"
-            [ "$keyring" != "-" ] && echo "Signed-By: $keyring"
-        } > "$target"
+        log "adding bookworm-backports from $(echo "$entry" | awk '/^URIs:/ {print $2}')"
+        echo "$entry" > "$target"
     fi
     suite_args=(-t bookworm-backports)
 fi

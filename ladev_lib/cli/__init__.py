@@ -24,6 +24,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "validate-paraphrases": ("ladev_lib.cli.validate_paraphrases", "Validate a CSV of (original, candidate) pairs."),
     "serve-policy": ("ladev_lib.cli.serve_policy", "Serve a policy over the openpi websocket protocol."),
     "summary": ("ladev_lib.cli.summary", "Print a study's report location and headline numbers."),
+    "config": ("ladev_lib.cli.config", "Print the configuration composed from conf/ (params.yaml)."),
 }
 
 
