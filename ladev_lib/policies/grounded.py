@@ -124,6 +124,14 @@ class GroundedPolicy(Policy):
     def begin_episode(self, ctx: EpisodeContext) -> None:
         self._ctx = ctx
 
+    def explain(self) -> str:
+        """What it understood: the chosen task and the runners-up, with similarities."""
+        if self.choice is None:
+            return "no task chosen yet"
+        lines = [f"chose {self.choice.chosen.text!r} (similarity {self.choice.score:.3f})"]
+        lines += [f"  {score:.3f}  {c.text}" for c, score in self.choice.ranking[1:]]
+        return "\n".join(lines)
+
     def reset(self, instruction: str) -> None:
         self.instruction = instruction
         self.choice = None

@@ -92,7 +92,8 @@ def _design_for(spec: SceneSpec, scene_id: str, study: str) -> dict[str, Any]:
     }
 
 
-def _fallback_basic(spec: SceneSpec) -> str:
+def default_instruction(spec: SceneSpec) -> str:
+    """The basic instruction of the spec's task, with the objects' display names."""
     catalog = load_catalog()
 
     def display(name: str | None) -> str | None:
@@ -136,7 +137,7 @@ def plan_episodes(
         texts = by_scene.get(scene_id, [])
         chosen = [r for r in texts if r["kind"] == "basic"][:1]
         if not chosen:
-            chosen = [{"instruction_id": f"{scene_id}/basic", "kind": "basic", "text": _fallback_basic(spec)}]
+            chosen = [{"instruction_id": f"{scene_id}/basic", "kind": "basic", "text": default_instruction(spec)}]
         if meta_scene["factor"] == "instruction":
             chosen += [r for r in texts if r["kind"] == "paraphrase" and r.get("selected")]
         invalid = None

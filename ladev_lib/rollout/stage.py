@@ -27,6 +27,7 @@ from ladev_lib.rollout.identity import code_fingerprint
 from ladev_lib.rollout.jobs import MediaOptions, WorkerSpec
 from ladev_lib.rollout.plan import PolicyIdentity, plan_episodes
 from ladev_lib.rollout.simulator import EpisodeSim, SimSetup
+from ladev_lib.sim.config import RobotConfig, SimConfig
 from ladev_lib.store import ContentStore
 from ladev_lib.tables import (
     CompiledSceneRow,
@@ -84,8 +85,8 @@ def rollout_stage(
         POLICIES.get(pc.name)  # fail fast: unknown name, or the extra to install
     rollout = section(cfg, "rollout", RolloutConfig)
     executor_cfg = executor_config(cfg)
-    sim_config = dict(cfg.get("sim") or {})
-    robot_config = dict(cfg.get("robot") or {})
+    sim_config = section(cfg, "sim", SimConfig).model_dump(mode="json")
+    robot_config = section(cfg, "robot", RobotConfig).model_dump(mode="json")
     study = str((cfg.get("study") or {}).get("name") or "study")
 
     compiled = read_table(_path(cfg, "compiled", root), CompiledSceneRow)
