@@ -143,7 +143,17 @@ def run_episode(
         return failed("error", describe_exception("simulator", exc))
     clock.sim += time.perf_counter() - t
     if invalid:
-        return failed("invalid_scene", invalid)
+        outcome = failed("invalid_scene", invalid)
+        if media is not None and media.frames:  # show the user what the check saw
+            try:
+                frame = sim.frame()
+            except Exception as exc:  # noqa: BLE001 - the verdict stands without its picture
+                return outcome.model_copy(update={"error": f"{invalid} (no frame: {exc})"})
+            write_png(Path(media.root) / f"{job.episode_id}_first.png", frame)
+            outcome = outcome.model_copy(
+                update={"first_frame_path": f"{media.prefix}/{job.episode_id}_first.png"}
+            )
+        return outcome
 
     # -- policy --------------------------------------------------------------
     seed_everything(job.seed)
