@@ -236,8 +236,8 @@ class LadevSceneEnv(BaseEnv):
     @property
     def _default_human_render_camera_configs(self) -> list[CameraConfig]:
         w, h = self.sim_cfg.overview_size
-        eye = self.profile.workspace_to_world(0.75, -0.75, 0.75)
-        target = self.profile.workspace_to_world(-0.12, 0.0, 0.05)
+        eye = self.profile.workspace_to_world(0.6, -0.65, 0.65)
+        target = self.profile.workspace_to_world(-0.18, 0.0, 0.12)
         pose = sapien_utils.look_at(eye.tolist(), target.tolist())
         return [CameraConfig(OVERVIEW_CAMERA, pose=pose, width=w, height=h, fov=0.9, near=0.01, far=20)]
 

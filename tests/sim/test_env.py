@@ -16,7 +16,7 @@ pytestmark = pytest.mark.sim
 BASE = [
     {"name": "coke_can", "x": 0.05, "y": 0.12, "yaw_deg": 30.0, "role": "source"},
     {"name": "sponge", "x": -0.05, "y": -0.12, "yaw_deg": -45.0},
-    {"name": "orange", "x": 0.1, "y": -0.05},
+    {"name": "yellow_cube", "x": 0.1, "y": -0.05},
 ]
 PICK = {"type": "pick_up", "source": "coke_can"}
 
@@ -24,7 +24,7 @@ PICK = {"type": "pick_up", "source": "coke_can"}
 def test_objects_stand_where_the_spec_puts_them(build: Any) -> None:
     u = build(make_spec(BASE, PICK))
     assert u.spec.objects[0].name == "coke_can" and u.spec.task.type == "pick_up"
-    assert set(u.objects) == {"coke_can", "sponge", "orange"}
+    assert set(u.objects) == {"coke_can", "sponge", "yellow_cube"}
     have_meshes = asset_dir() is not None
     assert u.object_sources == {n: "mesh" if have_meshes else "standin" for n in u.objects}
     poses = u.object_poses()
