@@ -354,13 +354,18 @@ class LadevSceneEnv(BaseEnv):
         # from the previous episode otherwise).
         robot.set_joint_drive_targets(qpos, joints=robot.active_joints)
 
-    def _physics_step(self) -> None:
-        self.scene.px.step()
+    def _physics_step(self, n: int = 1) -> None:
+        """``n`` physics steps with no control, keeping GPU buffers in sync with poses set here."""
+        if self.gpu_sim_enabled:
+            self.scene._gpu_apply_all()
+        for _ in range(n):
+            self.scene.px.step()
+        if self.gpu_sim_enabled:
+            self.scene._gpu_fetch_all()
 
     def _settle(self, seconds: float) -> int:
         n = round(seconds * self.sim_freq)
-        for _ in range(n):
-            self._physics_step()
+        self._physics_step(n)
         return n
 
     def _anything_moving(self) -> bool:
@@ -460,6 +465,10 @@ class LadevSceneEnv(BaseEnv):
         if not self.spawn_report.settled_poses:
             return {"success": torch.zeros(1, dtype=torch.bool)}
         return get_task(self.spec.task.type).evaluate(self)
+
+    def predicates(self) -> dict[str, bool]:
+        """``evaluate()`` as plain booleans (for episode rows and printing)."""
+        return {k: bool(v.reshape(-1)[0]) for k, v in self.evaluate().items()}
 
     def _get_obs_extra(self, info: dict[str, Any]) -> dict[str, Any]:
         tcp = self.agent.robot.links_map.get(self.profile.tcp_link)
