@@ -236,8 +236,8 @@ class LadevSceneEnv(BaseEnv):
     @property
     def _default_human_render_camera_configs(self) -> list[CameraConfig]:
         w, h = self.sim_cfg.overview_size
-        eye = self.profile.workspace_to_world(0.75, -0.75, 0.75)
-        target = self.profile.workspace_to_world(-0.12, 0.0, 0.05)
+        eye = self.profile.workspace_to_world(0.6, -0.65, 0.65)
+        target = self.profile.workspace_to_world(-0.18, 0.0, 0.12)
         pose = sapien_utils.look_at(eye.tolist(), target.tolist())
         return [CameraConfig(OVERVIEW_CAMERA, pose=pose, width=w, height=h, fov=0.9, near=0.01, far=20)]
 
@@ -354,13 +354,18 @@ class LadevSceneEnv(BaseEnv):
         # from the previous episode otherwise).
         robot.set_joint_drive_targets(qpos, joints=robot.active_joints)
 
-    def _physics_step(self) -> None:
-        self.scene.px.step()
+    def _physics_step(self, n: int = 1) -> None:
+        """``n`` physics steps with no control, keeping GPU buffers in sync with poses set here."""
+        if self.gpu_sim_enabled:
+            self.scene._gpu_apply_all()
+        for _ in range(n):
+            self.scene.px.step()
+        if self.gpu_sim_enabled:
+            self.scene._gpu_fetch_all()
 
     def _settle(self, seconds: float) -> int:
         n = round(seconds * self.sim_freq)
-        for _ in range(n):
-            self._physics_step()
+        self._physics_step(n)
         return n
 
     def _anything_moving(self) -> bool:
@@ -460,6 +465,10 @@ class LadevSceneEnv(BaseEnv):
         if not self.spawn_report.settled_poses:
             return {"success": torch.zeros(1, dtype=torch.bool)}
         return get_task(self.spec.task.type).evaluate(self)
+
+    def predicates(self) -> dict[str, bool]:
+        """``evaluate()`` as plain booleans (for episode rows and printing)."""
+        return {k: bool(v.reshape(-1)[0]) for k, v in self.evaluate().items()}
 
     def _get_obs_extra(self, info: dict[str, Any]) -> dict[str, Any]:
         tcp = self.agent.robot.links_map.get(self.profile.tcp_link)
