@@ -42,6 +42,12 @@ class SimConfig(BaseModel):
     settle_s: float = Field(
         default=0.5, ge=0.0, le=5.0, description="Seconds of physics after spawning, robot held still."
     )
+    settle_max_s: float = Field(
+        default=3.0,
+        ge=0.0,
+        le=10.0,
+        description="Settling continues in 0.25 s chunks while an object still moves, up to this.",
+    )
     overview_size: tuple[int, int] = Field(
         default=(512, 384), description="[width, height] of the overview (render-only) camera."
     )

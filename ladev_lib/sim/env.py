@@ -236,8 +236,8 @@ class LadevSceneEnv(BaseEnv):
     @property
     def _default_human_render_camera_configs(self) -> list[CameraConfig]:
         w, h = self.sim_cfg.overview_size
-        eye = self.profile.workspace_to_world(0.75, -0.75, 0.75)
-        target = self.profile.workspace_to_world(-0.12, 0.0, 0.05)
+        eye = self.profile.workspace_to_world(0.6, -0.65, 0.65)
+        target = self.profile.workspace_to_world(-0.18, 0.0, 0.12)
         pose = sapien_utils.look_at(eye.tolist(), target.tolist())
         return [CameraConfig(OVERVIEW_CAMERA, pose=pose, width=w, height=h, fov=0.9, near=0.01, far=20)]
 
@@ -330,14 +330,11 @@ class LadevSceneEnv(BaseEnv):
             report.spawn_poses[placement.name] = np.concatenate([p, q])
         self._physics_step()
         report.penetrations = self._spawn_penetrations()
-        steps = round(self.sim_cfg.settle_s * self.sim_freq)
-        for _ in range(steps):
-            self._physics_step()
-        if any(sum(self._speed(n)) > 1e-2 for n in self.objects):  # slow settlers get longer
-            for _ in range(2 * steps):
-                self._physics_step()
-            steps *= 3
-        report.settle_steps = steps + 1
+        steps = 1 + self._settle(self.sim_cfg.settle_s)
+        # Slow settlers (rolling fruit, wobbling meshes) get more time, as in SimplerEnv.
+        while steps < self.sim_cfg.settle_max_s * self.sim_freq and self._anything_moving():
+            steps += self._settle(0.25)
+        report.settle_steps = steps
         report.settled_poses = {n: self._pose_np(a) for n, a in self.objects.items()}
         report.settled_speeds = {n: self._speed(n) for n in self.objects}
         self.spawn_report = report
@@ -359,6 +356,18 @@ class LadevSceneEnv(BaseEnv):
 
     def _physics_step(self) -> None:
         self.scene.px.step()
+
+    def _settle(self, seconds: float) -> int:
+        n = round(seconds * self.sim_freq)
+        for _ in range(n):
+            self._physics_step()
+        return n
+
+    def _anything_moving(self) -> bool:
+        return any(v > 1e-3 or w > 1e-2 for v, w in (self._speed(n) for n in self.objects))
+
+    def __str__(self) -> str:  # gymnasium's would print spec.id
+        return f"<LadevSceneEnv<{ENV_ID}> {self.profile.name}: {len(self.objects)} objects>"
 
     def _spawn_penetrations(self) -> list[tuple[str, str, float]]:
         if self.gpu_sim_enabled:

@@ -90,8 +90,17 @@ def _standin_shapes(obj: CatalogObject) -> tuple[list[tuple[str, sapien.Pose, tu
         half = (sx / 2, sy / 2, sz / 2)
         return [("box", sapien.Pose(), half)], np.array(half)
     if shape in ("cylinder", "plate"):
-        r = (sx + sy) / 4
-        return [("cylinder", _X_TO_Z, (r, sz / 2))], np.array([r, r, sz / 2])
+        if max(sx, sy) <= 1.15 * min(sx, sy):
+            r = (sx + sy) / 4
+            return [("cylinder", _X_TO_Z, (r, sz / 2))], np.array([r, r, sz / 2])
+        # An oval footprint (bleach, mustard bottles): a stadium, box between two half-cylinders.
+        r, half_len = min(sx, sy) / 2, max(sx, sy) / 2 - min(sx, sy) / 2
+        axis = np.array([1.0, 0.0, 0.0]) if sx >= sy else np.array([0.0, 1.0, 0.0])
+        box_half = (half_len, r, sz / 2) if sx >= sy else (r, half_len, sz / 2)
+        parts: list[tuple[str, sapien.Pose, tuple[float, ...]]] = [("box", sapien.Pose(), box_half)]
+        for sign in (-1.0, 1.0):
+            parts.append(("cylinder", sapien.Pose(p=(sign * half_len * axis).tolist(), q=_X_TO_Z.q), (r, sz / 2)))
+        return parts, np.array([sx / 2, sy / 2, sz / 2])
     if shape == "sphere":
         r = (sx + sy + sz) / 6
         return [("sphere", sapien.Pose(), (r,))], np.array([r, r, r])
@@ -109,7 +118,7 @@ def _standin_shapes(obj: CatalogObject) -> tuple[list[tuple[str, sapien.Pose, tu
         hx, hy, hz = sx / 2, sy / 2, sz / 2
         wall_hz = (sz - floor) / 2
         wall_z = -hz + floor + wall_hz
-        parts: list[tuple[str, sapien.Pose, tuple[float, ...]]] = [
+        parts = [
             ("box", sapien.Pose([0, 0, -hz + floor / 2]), (hx, hy, floor / 2)),
             ("box", sapien.Pose([hx - wall / 2, 0, wall_z]), (wall / 2, hy, wall_hz)),
             ("box", sapien.Pose([-hx + wall / 2, 0, wall_z]), (wall / 2, hy, wall_hz)),

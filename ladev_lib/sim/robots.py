@@ -11,9 +11,9 @@ the robot, so one spec means the same layout for every robot.
 
 - ``panda``: ManiSkill's Panda on ManiSkill's table (``TableSceneBuilder``
   layout: table top at z = 0, robot base at x = -0.615 facing +x). Control 20 Hz,
-  sim 100 Hz (ManiSkill's defaults). The policy camera is ManiSkill's standard Panda
-  camera: across the table, facing the robot, so the robot's left is on the image's
-  right.
+  sim 100 Hz (ManiSkill's defaults). The policy camera looks across the table at the
+  robot (so the robot's left is on the image's right); the robot starts with its
+  gripper raised above the workspace's near edge, pointing down.
 - ``widowx``: SimplerEnv's Bridge "visual matching" setup: robot on the table
   top (z = 0.87) facing -x, the Bridge 3rd-view camera (Logitech C920
   intrinsics), ``bridge_real_eval_1.png`` overlay; control 5 Hz, sim 500 Hz.
@@ -172,9 +172,10 @@ def look_at(eye: tuple[float, float, float], target: tuple[float, float, float])
 
 # --- Panda ----------------------------------------------------------------------
 _PANDA_WS = (-0.1, 0.0, 0.0)
-# ManiSkill's standard Panda "base_camera" placement: across the table, facing the
-# robot (an over-the-shoulder view is blocked by the arm's rest pose).
-_PANDA_EYE = (0.3, 0.0, 0.6)
+# Across the table, facing the robot, like ManiSkill's standard Panda "base_camera" (an
+# over-the-shoulder view would look through the arm). The initial joint positions hold
+# the gripper 33 cm above the workspace's near edge, where it hides no object.
+_PANDA_EYE = (0.25, 0.0, 0.55)
 PANDA = RobotProfile(
     name="panda",
     agent_uid="panda",
@@ -187,7 +188,7 @@ PANDA = RobotProfile(
     init_qpos=dict(
         zip(
             [f"panda_joint{i}" for i in range(1, 8)] + ["panda_finger_joint1", "panda_finger_joint2"],
-            [0.0, math.pi / 8, 0.0, -math.pi * 5 / 8, 0.0, math.pi * 3 / 4, math.pi / 4, 0.04, 0.04],
+            [0.0, -0.4, 0.0, -2.5, 0.0, 2.1, math.pi / 4, 0.04, 0.04],
             strict=True,
         )
     ),
@@ -204,7 +205,7 @@ PANDA = RobotProfile(
     control_freq_hz=20,
     policy_camera=PinholeCamera(
         p=_PANDA_EYE,
-        q=look_at(_PANDA_EYE, (-0.12, 0.0, 0.05)),
+        q=look_at(_PANDA_EYE, _PANDA_WS),
         native_size=(512, 512),
         fx=468.9,  # 1 rad field of view
         fy=468.9,

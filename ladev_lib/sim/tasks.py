@@ -11,7 +11,7 @@ Shared definitions:
 - *grasped*: the robot's grasp check (ManiSkill's ``is_grasping`` for Panda and
   WidowX: both fingers press the object with >= 0.5 N, each within 85 degrees of
   its closing direction; SimplerEnv's check for the Google robot).
-- *touches X*: the contact force between the two bodies exceeds 0.01 N.
+- *touches X*: the contact force between the two bodies exceeds 1 mN.
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from ladev_lib.registry import Registry
 if TYPE_CHECKING:
     from ladev_lib.sim.env import LadevSceneEnv
 
-CONTACT_N = 0.01
+CONTACT_N = 1e-3
 TARGET_CONTACT_N = 0.05
 
 
