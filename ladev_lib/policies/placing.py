@@ -36,8 +36,10 @@ TARGET_GAP_M = 0.012
 """move_near: gap between the released object (and fingers) and the target."""
 OTHER_GAP_M = 0.03
 """move_near: gap kept to every other object."""
-CLOSEST_MARGIN_M = 0.03
+CLOSEST_MARGIN_M = 0.015
 """move_near: the object must end this much closer to the target than to any other."""
+FITTED_YAWS = 4
+"""on / in: how many wrist turns (best fitting first) to try lowering with."""
 DESCENT_CLEARANCE_M = 0.006
 DESCENT_STEP_M = 0.004
 
@@ -110,14 +112,17 @@ def lowest_free_height(
 
     None if even ``z_high`` is blocked.
     """
-    if len(obstacles) == 0:
-        return z_low
-    tree = cKDTree(obstacles)
     pts = held.all_points + np.array([tcp_xy[0], tcp_xy[1], 0.0])
+    # Only obstacles under the hand's footprint can be met on the way straight down.
+    lo, hi = pts[:, :2].min(axis=0) - clearance, pts[:, :2].max(axis=0) + clearance
+    below = obstacles[np.all((obstacles[:, :2] >= lo) & (obstacles[:, :2] <= hi), axis=1)]
+    if len(below) == 0:
+        return z_low
+    tree = cKDTree(below)
     best: float | None = None
     for z in np.arange(z_high, z_low - 1e-9, -DESCENT_STEP_M):
-        dist, _ = tree.query(pts + np.array([0.0, 0.0, z]), k=1)
-        if float(np.min(dist)) < clearance:
+        dist, _ = tree.query(pts + np.array([0.0, 0.0, z]), k=1, distance_upper_bound=clearance)
+        if np.isfinite(dist).any():
             break
         best = float(z)
     return best
@@ -131,12 +136,16 @@ def _inside_fraction(xy: np.ndarray, rect: tuple[np.ndarray, np.ndarray, np.ndar
 
 def _yaws_by_fit(held: HeldObject, centre: np.ndarray,
                  rect: tuple[np.ndarray, np.ndarray, np.ndarray]) -> list[float]:
-    """Wrist turns, those keeping more of the held object inside ``rect`` first."""
+    """Wrist turns (15 degree steps, up to a quarter turn), best fit over ``rect`` first.
+
+    The fit is the share of the held object over the rectangle; smaller turns win ties.
+    """
     def fit(yaw: float) -> float:
         turned = held.turned(yaw)
         rel = turned.object_points[:, :2] - turned.object_points[:, :2].mean(axis=0)
-        return _inside_fraction(rel + centre, rect) - 0.01 * abs(yaw)
-    return sorted(YAW_OPTIONS_RAD, key=fit, reverse=True)
+        return _inside_fraction(rel + centre, rect) - 0.02 * abs(yaw)
+    options = [float(v) for v in np.deg2rad(np.arange(-90, 91, 15))]
+    return sorted(options, key=fit, reverse=True)[:FITTED_YAWS]
 
 
 def _tcp_for_object_at(held: HeldObject, object_xy: np.ndarray) -> np.ndarray:
@@ -185,7 +194,7 @@ class _Outline:
             n = max(1, int(np.ceil(np.linalg.norm(b - a) / spacing)))
             pts.append(a + np.outer(np.arange(n) / n, b - a))
         self.boundary = np.vstack(pts)
-        self.centre = corners.mean(axis=0)
+        self.centre = footprint_rectangle(corners)[0]  # the box centre, as the predicates use
         self._tri = Delaunay(corners)
         self._tree = cKDTree(self.boundary)
 
@@ -223,7 +232,7 @@ def place_near(
     for yaw in YAW_OPTIONS_RAD:
         turned = held.turned(yaw)
         obj_xy = turned.object_points[:, :2]
-        centre = obj_xy.mean(axis=0)
+        centre = footprint_rectangle(obj_xy)[0]
         hand = _Outline(np.vstack([obj_xy, turned.finger_points[:, :2]]) - centre)
         for phi in np.deg2rad(np.arange(0, 360, 15)):
             u = np.array([np.cos(phi), np.sin(phi)])

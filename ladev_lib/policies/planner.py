@@ -15,6 +15,9 @@ from __future__ import annotations
 
 import contextlib
 import io
+import os
+import sys
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -25,13 +28,35 @@ import sapien
 from ladev_lib.policies.geometry import transform_points
 
 OCTREE_RESOLUTION_M = 0.01
-JOINT_VEL_SCALE = 0.9
-JOINT_ACC_SCALE = 0.9
+JOINT_VEL_SCALE = 1.3
+JOINT_ACC_SCALE = 2.5
 RRT_TIME_S = 1.0
-END_POS_TOL_M = 0.004
+END_POS_TOL_M = 0.003
 END_ROT_TOL_RAD = 0.05
+REFINE_MAX_RAD = 0.3
+"""Largest joint change the end-of-screw correction may make."""
+REFINE_STEP_RAD = 0.03
 BRISK_PATH_STEPS = 120
 """A screw path longer than this (control steps) is compared against RRT."""
+
+
+@contextlib.contextmanager
+def _quiet_native_output() -> Iterator[None]:
+    """Hide what OMPL prints from C++ ("invalid start state", ...) during one call."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = os.dup(1), os.dup(2)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        os.dup2(devnull, 2)
+        with contextlib.redirect_stdout(io.StringIO()):  # and mplib's own Python prints
+            yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, devnull):
+            os.close(fd)
 
 
 @dataclass(frozen=True)
@@ -113,11 +138,30 @@ class ArmPlanner:
         if result["status"] != "Success":
             return None
         path = np.asarray(result["position"])
-        # mplib integrates the screw with the Jacobian and never checks where it ends;
-        # near a singularity it drifts by centimetres.
+        # mplib integrates the screw with the Jacobian and never checks where it ends:
+        # it drifts by millimetres, near a singularity by centimetres. Close small gaps
+        # with a local IK step; give up on large ones.
         if not self._ends_at(qpos, path[-1], goal):
-            return None
+            fixed = self._refine_end(qpos, path[-1], goal)
+            if fixed is None:
+                return None
+            path = np.vstack([path, fixed])
         return ArmPath(path, "screw")
+
+    def _refine_end(self, qpos: np.ndarray, arm_q: np.ndarray, goal: sapien.Pose) -> np.ndarray | None:
+        """Waypoints from ``arm_q`` to the exact IK solution of ``goal`` next to it, or None."""
+        seed = self._mp.pad_qpos(np.asarray(qpos, dtype=float).copy())
+        seed[: self.n_arm] = arm_q
+        index = self._mp.link_name_2_idx[self._mp.move_group]
+        q, ok, _ = self._mp.pinocchio_model.compute_IK_CLIK(index, self._to_base(goal), seed)
+        q = np.asarray(q)[: self.n_arm]
+        if not ok or not self._mp.wrap_joint_limit(np.r_[q, seed[self.n_arm:]]):
+            return None
+        gap = float(np.max(np.abs(q - arm_q)))
+        if gap > REFINE_MAX_RAD or not self._ends_at(qpos, q, goal):
+            return None
+        n = max(1, int(np.ceil(gap / REFINE_STEP_RAD)))
+        return np.asarray(arm_q + np.outer(np.arange(1, n + 1) / n, q - arm_q))
 
     def tcp_pose(self, qpos: np.ndarray) -> sapien.Pose:
         """Forward kinematics: the TCP pose (world) at this joint configuration."""
@@ -137,7 +181,7 @@ class ArmPlanner:
 
     def rrt(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
         """A collision-free RRT-Connect path to ``goal`` (world), or None."""
-        with contextlib.redirect_stdout(io.StringIO()):  # "Invalid start state!" etc.
+        with _quiet_native_output():
             result = self._mp.plan_qpos_to_pose(
                 self._to_base(goal),
                 np.asarray(qpos, dtype=float).copy(),

@@ -33,6 +33,7 @@ from ladev_lib.policies.placing import (
     HeldObject,
     Placement,
     finger_points,
+    lowest_free_height,
     place_in,
     place_near,
     place_on,
@@ -51,6 +52,8 @@ LIFT_HEIGHT_M = 0.12
 RELEASE_GAP_M = 0.005
 """move_near: the object is let go this far above the table."""
 RETREAT_HEIGHT_M = 0.08
+NEAR_MARGIN_M = 0.08
+"""move_near counts as near within both half diagonals plus this (SimplerEnv allows 5-10 cm)."""
 GRASP_CANDIDATES = 8
 PLACE_CANDIDATES = 8
 CLOSE_STEPS = 10
@@ -70,10 +73,20 @@ class SkillOutcome:
     phase: str = "start"
     attempts: int = 0
     log: list[str] = field(default_factory=list)
+    phase_steps: dict[str, int] = field(default_factory=dict)
+    """Actions emitted per phase (all attempts together)."""
 
 
 class SkillFailure(Exception):
-    """A phase that cannot be planned; the message says why."""
+    """A phase that cannot be planned or did not work; the message says why.
+
+    ``final`` marks failures another attempt cannot change (the scene is as it was:
+    no grasp fits, no free spot); the skill then stops instead of retrying.
+    """
+
+    def __init__(self, message: str, final: bool = False):
+        super().__init__(message)
+        self.final = final
 
 
 class TaskSkill:
@@ -116,10 +129,17 @@ class TaskSkill:
 
     # -- iteration -----------------------------------------------------------
     def __iter__(self) -> Iterator[np.ndarray]:
-        return self._actions
+        return self
 
     def __next__(self) -> np.ndarray:
-        return next(self._actions)
+        action = next(self._actions)
+        steps = self.outcome.phase_steps
+        steps[self.outcome.phase] = steps.get(self.outcome.phase, 0) + 1
+        return action
+
+    def hold_action(self) -> np.ndarray:
+        """The action that keeps the arm and gripper where they were last sent."""
+        return self._action()
 
     # -- state ---------------------------------------------------------------
     def _qpos(self) -> np.ndarray:
@@ -210,10 +230,17 @@ class TaskSkill:
                         return self._finish()
             except SkillFailure as exc:
                 reason = str(exc)
+                final = exc.final
+            else:
+                final = False
             self._note(f"attempt {attempt} failed: {reason}")
-            if self._holding() or self._gripper_action < self._gripper.action(self._gripper.max_opening):
+            if self._holding():
+                yield from self._set_down()
+            elif self._gripper_action < self._gripper.action(self._gripper.max_opening):
                 yield from self._gripper_steps(self._gripper.max_opening, OPEN_STEPS)
                 yield from self._retreat()
+            if final:
+                break
         self.outcome.status = "failed"
         self.outcome.reason = reason or "gave up"
         return None
@@ -224,6 +251,26 @@ class TaskSkill:
     def _finish(self) -> None:
         self.outcome.status = "done"
         self._phase("done")
+
+    def _set_down(self) -> Iterator[np.ndarray]:
+        """Put the held object back down below the hand (after a failed attempt), let go."""
+        self._phase("set_down")
+        geoms = self._geometries()
+        src = geoms[self.source]
+        rest = [g.points for n, g in geoms.items() if n != self.source]
+        obstacles = np.vstack(rest) if rest else np.zeros((0, 3))
+        held = self._held(src)
+        tcp = self._tcp()
+        xy = np.asarray(tcp.p[:2], dtype=float)
+        floor = self.table_z + held.bottom_below_tcp + RELEASE_GAP_M
+        z = lowest_free_height(held, xy, obstacles, float(tcp.p[2]), floor)
+        if z is not None and z < float(tcp.p[2]) - 0.005:
+            down = sapien.Pose([0.0, 0.0, z - float(tcp.p[2])]) * tcp
+            path = self.planner.screw(self._qpos(), down, avoid=False)
+            if path is not None:
+                yield from self._follow(path)
+        yield from self._gripper_steps(self._gripper.max_opening, OPEN_STEPS)
+        yield from self._retreat()
 
     def _retreat(self) -> Iterator[np.ndarray]:
         self._phase("retreat")
@@ -241,7 +288,7 @@ class TaskSkill:
         obstacles = np.vstack(others) if others else np.zeros((0, 3))
         grasps = top_down_grasps(src.points, obstacles, closing_of(self._tcp()))
         if not grasps:
-            raise SkillFailure(f"no top-down grasp of {self.source} fits the gripper here")
+            raise SkillFailure(f"no top-down grasp of {self.source} fits the gripper here", final=True)
         self.planner.detach()
         self.planner.set_obstacles(np.vstack([obstacles, src.points]))
         qpos = self._qpos()
@@ -319,7 +366,8 @@ class TaskSkill:
         candidates = self._placements(held, src, tgt, others, other_pts, carry_z)
         if not candidates:
             raise SkillFailure(
-                f"no free spot to put {self.source} {self.task_type.split('_')[1]} {self.target}"
+                f"no free spot to put {self.source} {self.task_type.split('_')[1]} {self.target}",
+                final=True,
             )
         # Plan with every other object as an obstacle and the held object as part of the hand.
         self.planner.set_obstacles(everything)
@@ -386,8 +434,25 @@ class TaskSkill:
             return f"{self.source} did not come to rest on {self.target}"
         if self.task_type == "put_in" and not (over_target and src.bottom_z < tgt.top_z):
             return f"{self.source} did not end inside {self.target}"
-        if self.task_type == "move_near" and src.bottom_z > self.table_z + 0.02:
-            return f"{self.source} did not come to rest on the table"
+        if self.task_type == "move_near":
+            if src.bottom_z > self.table_z + 0.02:
+                return f"{self.source} did not come to rest on the table"
+            return self._not_near(geoms)
+        return ""
+
+    def _not_near(self, geoms: dict[str, ObjectGeometry]) -> str:
+        """move_near, checked as SimplerEnv does on box centres: near, and nearest the target."""
+        assert self.target is not None
+        centre = {n: g.footprint()[0] for n, g in geoms.items()}
+        half_diag = {n: float(np.linalg.norm(g.footprint()[2])) for n, g in geoms.items()}
+        d_target = float(np.linalg.norm(centre[self.source] - centre[self.target]))
+        if d_target > half_diag[self.source] + half_diag[self.target] + NEAR_MARGIN_M:
+            return f"{self.source} ended {d_target:.3f} m from {self.target}, not near it"
+        for name in geoms:
+            if name not in (self.source, self.target):
+                d = float(np.linalg.norm(centre[self.source] - centre[name]))
+                if d <= d_target:
+                    return f"{self.source} ended nearer {name} ({d:.3f} m) than {self.target}"
         return ""
 
 
