@@ -7,8 +7,10 @@ standard short form ("pick up the apple", "put the apple on the plate"), over
 the objects' display names and respecting what they can do (a put_in target
 must be a container the source fits in), then picks the one whose sentence
 embedding is nearest the instruction's (all-MiniLM-L6-v2 by default, loaded
-once per process; one batch per episode, candidate embeddings cached), and
-executes it with the oracle's motion skills (``ladev_lib.policies.skills``).
+once per process; candidate embeddings cached), and executes it with the
+oracle itself (``OraclePolicy`` on the motion skills of
+``ladev_lib.policies.skills``), shown the understood task instead of the
+scene's: where it understands, it does exactly what the oracle does.
 
 So its success moves with language the way a VLA's should not: a paraphrase
 far from the short form, a distractor whose name is close to the source's, a
@@ -18,7 +20,8 @@ What it chose is kept in :attr:`GroundedPolicy.choice` for inspection.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -27,8 +30,10 @@ import numpy as np
 from ladev_lib.catalog import Catalog, CatalogObject, load_catalog
 from ladev_lib.language.embeddings import DEFAULT_MODEL, Embedder, load_embedder
 from ladev_lib.language.instructions import basic_instruction
-from ladev_lib.policies.base import EpisodeContext, Observation, Policy, PolicyInfo, PolicyStep
+from ladev_lib.policies.base import Observation, Policy, PolicyInfo, PolicyStep
+from ladev_lib.policies.oracle import ORACLE_MAX_EPISODE_STEPS, OraclePolicy
 from ladev_lib.scenes.feasibility import task_feasibility
+from ladev_lib.scenes.spec import SceneBounds, SceneSpec, TaskSpec
 
 TASK_ORDER: tuple[str, ...] = ("pick_up", "move_near", "put_on", "put_in")
 
@@ -100,29 +105,42 @@ def scene_objects(spec: Any, catalog: Catalog) -> list[tuple[str, CatalogObject]
     return [(o.name, catalog.get(o.id)) for o in spec.objects]
 
 
-class GroundedPolicy(Policy):
-    """Retrieve the task from the instruction, execute it with the Panda motion skills."""
+def spec_with_task(spec: SceneSpec, task: CandidateTask) -> SceneSpec:
+    """The scene as the grounded policy understood it: its chosen task, roles to match."""
 
-    def __init__(self, embedding_model: str = DEFAULT_MODEL, max_attempts: int = 3) -> None:
+    def role(name: str) -> str:
+        return "source" if name == task.source else "target" if name == task.target else "distractor"
+
+    objects = tuple(o.model_copy(update={"role": role(o.name)}) for o in spec.objects)
+    chosen = TaskSpec(type=task.task, source=task.source, target=task.target)  # type: ignore[arg-type]
+    return spec.model_copy(update={"task": chosen, "objects": objects})
+
+
+class GroundedPolicy(Policy):
+    """Retrieve the task from the instruction; execute it exactly as the oracle would."""
+
+    def __init__(
+        self,
+        embedding_model: str = DEFAULT_MODEL,
+        max_attempts: int = 3,
+        bounds: SceneBounds | dict[str, object] | None = None,
+    ) -> None:
         self.info = PolicyInfo(
             name="grounded",
             robots=("panda",),
             control_mode="pd_joint_pos",
             image_size=None,
             privileged=True,
+            max_episode_steps=ORACLE_MAX_EPISODE_STEPS,  # the oracle's time budget: a fair comparison
         )
         self.embedding_model = embedding_model
-        self.max_attempts = max_attempts
         self.catalog = load_catalog()
         self.retriever = TaskRetriever(load_embedder(embedding_model))
+        # The executor: the oracle, shown the task this policy understood instead of the scene's.
+        self.executor = OraclePolicy(max_attempts=max_attempts, bounds=bounds)
         self.instruction = ""
         self.choice: TaskChoice | None = None
-        self._actions: Iterator[np.ndarray] | None = None
-        self._last: np.ndarray | None = None
-        self._ctx: EpisodeContext | None = None
-
-    def begin_episode(self, ctx: EpisodeContext) -> None:
-        self._ctx = ctx
+        self._understood: SceneSpec | None = None
 
     def explain(self) -> str:
         """What it understood: the chosen task and the runners-up, with similarities."""
@@ -135,34 +153,16 @@ class GroundedPolicy(Policy):
     def reset(self, instruction: str) -> None:
         self.instruction = instruction
         self.choice = None
-        self._actions = None
-        self._last = None
-
-    def _start(self, obs: Observation) -> Iterator[np.ndarray]:
-        from ladev_lib.policies.skills import TaskSkill
-
-        if obs.privileged is None or obs.privileged.env is None:
-            raise RuntimeError("grounded is privileged: it needs the object list and the env")
-        objects = scene_objects(obs.privileged.spec, self.catalog)
-        self.choice = self.retriever.choose(self.instruction, afforded_tasks(objects))
-        c = self.choice.chosen
-        return iter(TaskSkill(obs.privileged.env, c.task, c.source, c.target, max_attempts=self.max_attempts))
-
-    def _hold(self, obs: Observation) -> np.ndarray:
-        """Stay where the arm is, gripper as it was (used only if the skill ends at once)."""
-        if self._last is not None:
-            return self._last
-        if self._ctx is None or obs.proprio is None:
-            raise RuntimeError("begin_episode() must be called before step()")
-        n = self._ctx.action_low.shape[0]
-        hold = np.concatenate([obs.proprio[: n - 1], [self._ctx.action_high[-1]]])
-        return hold.astype(np.float32)
+        self._understood = None
+        self.executor.reset(instruction)
 
     def step(self, obs: Observation) -> PolicyStep:
-        if self._actions is None:
-            self._actions = self._start(obs)
-        try:
-            self._last = np.asarray(next(self._actions), dtype=np.float32)
-        except StopIteration:
-            return PolicyStep(action=self._hold(obs), terminate=True)
-        return PolicyStep(action=self._last)
+        priv = obs.privileged
+        if priv is None or priv.env is None:
+            raise ValueError("grounded is privileged: it needs the object list and the env")
+        if self._understood is None:
+            objects = scene_objects(priv.spec, self.catalog)
+            self.choice = self.retriever.choose(self.instruction, afforded_tasks(objects))
+            self._understood = spec_with_task(priv.spec, self.choice.chosen)
+        view = dataclasses.replace(priv, spec=self._understood)
+        return self.executor.step(dataclasses.replace(obs, privileged=view))
