@@ -8,8 +8,10 @@ is built once per (robot, control mode, camera size) and reused after.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
+from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from ladev_lib.errors import ConfigError, LadevError
@@ -39,9 +41,24 @@ class WorkerSetupError(LadevError):
 
 
 def apply_thread_env(env: dict[str, str]) -> None:
-    """One thread per worker for the software renderer and BLAS (before they load)."""
+    """One thread per worker for the software renderer and BLAS, unless the user chose otherwise."""
     for key, value in env.items():
-        os.environ[key] = value
+        os.environ.setdefault(key, value)
+
+
+@contextlib.contextmanager
+def child_env(env: dict[str, str]) -> Iterator[None]:
+    """Environment for processes started inside the block (numpy reads it when a child imports it).
+
+    Keys the user has set are left alone; the parent's environment is restored after.
+    """
+    added = {k: v for k, v in env.items() if k not in os.environ}
+    os.environ.update(added)
+    try:
+        yield
+    finally:
+        for key in added:
+            os.environ.pop(key, None)
 
 
 class EpisodeWorker:

@@ -31,7 +31,7 @@ from ladev_lib.rollout.executors.base import (
     hang_outcome,
 )
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
-from ladev_lib.rollout.worker import EpisodeWorker, WorkerSetupError, apply_thread_env
+from ladev_lib.rollout.worker import EpisodeWorker, WorkerSetupError, apply_thread_env, child_env
 
 # Layout of the shared heartbeat array.
 _DEADLINE, _PHASE, _STEP, _LIMIT = range(4)
@@ -96,7 +96,8 @@ class LocalPoolExecutor:
         process = self._ctx.Process(
             target=_worker_main, args=(spec, child, beat), name="ladev-episode-worker", daemon=True
         )
-        process.start()
+        with child_env(spec.thread_env):  # set before the child imports numpy, torch, SAPIEN
+            process.start()
         child.close()
         return _Slot(process, parent, beat)
 

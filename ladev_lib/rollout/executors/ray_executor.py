@@ -141,7 +141,13 @@ class RayExecutor:
             return
         ray = _import_ray()
         started_here = self._connect(ray)
-        actor_cls = ray.remote(num_cpus=self.num_cpus_per_worker, max_concurrency=2)(RayEpisodeActor)
+        # One thread per actor for the renderer and BLAS, set before the actor process imports them.
+        thread_env = {k: os.environ.get(k, v) for k, v in spec.thread_env.items()}
+        actor_cls = ray.remote(
+            num_cpus=self.num_cpus_per_worker,
+            max_concurrency=2,
+            runtime_env={"env_vars": thread_env},
+        )(RayEpisodeActor)
         idle: list[Any] = []
         busy: dict[Any, _Busy] = {}
         ledger = CrashLedger(self.crash_retries)
