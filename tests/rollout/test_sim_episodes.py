@@ -110,3 +110,36 @@ def test_stage_script_writes_the_table_and_reuses_the_store(tmp_path):
     assert again.returncode == 0, again.stderr
     assert "2 episodes (0 run now, 2 from the store)" in again.stdout
     assert read_table(tmp_path / "data/episodes/floor.parquet", EpisodeRow).equals(df)
+
+
+def test_ladev_run_prints_the_outcome_and_writes_frames(tmp_path):
+    from click.testing import CliRunner
+
+    from ladev_lib.cli import cli
+
+    spec_path = tmp_path / "scene.json"
+    spec_path.write_text(pick_up_scene("cli", "coke_can", "apple").to_json())
+    args = ["run", str(spec_path), "--policy", "noop", "--frames", str(tmp_path / "frames"),
+            "--config-dir", str(REPO / "conf"), "robot.max_episode_steps.pick_up=5", "sim.image_size=[96,96]"]
+    result = CliRunner().invoke(cli, args)
+    assert result.exit_code == 0, result.output
+    assert "instruction: 'pick up the coke can'" in result.output
+    assert "FAILURE after 5 steps" in result.output
+    assert "no   success" in result.output
+    assert (tmp_path / "frames/scene_first.png").exists() and (tmp_path / "frames/scene_last.png").exists()
+
+    as_json = CliRunner().invoke(cli, [*args, "--json", "--instruction", "lift the can"])
+    assert as_json.exit_code == 0, as_json.output
+    data = json.loads(as_json.output[as_json.output.index("{"):])
+    assert data["instruction"] == "lift the can" and data["steps"] == 5 and data["status"] == "failure"
+
+
+def test_ladev_run_rejects_a_bad_spec(tmp_path):
+    from click.testing import CliRunner
+
+    from ladev_lib.cli import cli
+
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"objects": [], "task": {"type": "pick_up", "source": "x"}}))
+    result = CliRunner().invoke(cli, ["run", str(bad)])
+    assert result.exit_code != 0 and "is not a valid scene spec" in result.output
