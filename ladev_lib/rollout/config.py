@@ -92,7 +92,9 @@ class RolloutConfig(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
     video: VideoMode = Field(
-        default="none", description="MP4 at the policy camera: none | failures | all."
+        default="none",
+        description="MP4 at the policy camera: none | failures | all. Applies to episodes run now; "
+        "episodes served from the store keep the media they were run with.",
     )
     frames: bool = Field(default=True, description="Save the first and last policy-camera frame (PNG).")
     video_fps: int = Field(default=10, ge=1, le=60)

@@ -124,3 +124,20 @@ def test_invalid_scene_keeps_a_picture_of_what_was_judged(catalog, tmp_path):
     assert out.status == "invalid_scene"
     assert out.first_frame_path == "m/e1_first.png" and (tmp_path / "e1_first.png").exists()
     assert out.video_path is None
+
+
+def test_a_scene_for_another_robot_runs_with_the_policys_first_robot(catalog, tmp_path):
+    from ladev_lib.rollout.episode import choose_robot
+    from ladev_lib.rollout.jobs import WorkerSpec
+    from ladev_lib.rollout.worker import EpisodeWorker
+    from tests.rollout.doubles import make_scripted_policy, make_toy_sim
+
+    assert choose_robot("widowx", ("panda", "widowx")) == "widowx"
+    assert choose_robot("widowx", ("panda",)) == "panda"
+    spec = sample_scene("pick_up", 1, "simpler", np.random.default_rng(2), catalog, robot="widowx", seed=2)
+    worker = EpisodeWorker(WorkerSpec("toy", {}, {}, {}, MediaOptions(str(tmp_path), "m", frames=False),
+                                      sim_factory=make_toy_sim, policy_factory=make_scripted_policy))
+    out = worker.run(job(spec))
+    assert out.robot == "panda" and out.status == "success"
+    (built,) = worker._sims.values()
+    assert built.setup.robot == "panda"
