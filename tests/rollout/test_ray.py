@@ -44,3 +44,13 @@ def test_ray_and_the_local_pool_give_identical_rows(toy_env, tmp_path_factory, m
     assert ray_hang["status"] == "error"
     assert ray_hang["error"].startswith("timeout: the policy step did not return within 2 s")
     assert ray_log.count("die-once") == 2  # the dead actor was replaced and the episode rerun
+
+
+def test_a_policy_that_cannot_be_built_stops_a_ray_run(toy_env):
+    from ladev_lib.rollout.worker import WorkerSetupError
+
+    write_study(toy_env, HEALTHY[:2])
+    cfg = toy_config({"name": "ray", "workers": 1})
+    cfg["policy"]["toy"]["no_such_option"] = 1
+    with pytest.raises(WorkerSetupError, match=r"^cannot build policy 'scripted-toy'.*no_such_option"):
+        run_toy(toy_env, cfg)

@@ -210,7 +210,8 @@ class RayExecutor:
         except RayTaskError as exc:
             cause = exc.as_instanceof_cause()
             if isinstance(cause, WorkerSetupError):
-                raise WorkerSetupError(str(cause).splitlines()[-1]) from None
+                qualified = f"{WorkerSetupError.__module__}.{WorkerSetupError.__name__}: "
+                raise WorkerSetupError(str(cause).splitlines()[-1].removeprefix(qualified)) from None
             raise
         idle.append(entry.actor)
         on_outcome(entry.job, EpisodeOutcome.model_validate(payload))
