@@ -152,7 +152,7 @@ class LadevSceneEnv(BaseEnv):
         self.objects, self.object_sources, self.built = {}, {}, {}
         self.spawn_report = SpawnReport()
         self._lights: list[tuple[Any, float]] = []
-        self._overlay: np.ndarray | None = None
+        self._overlay: torch.Tensor | None = None
         kwargs.setdefault("sim_backend", self.sim_cfg.sim_backend)
         kwargs["render_backend"] = resolve_render_backend(
             kwargs.get("render_backend", self.sim_cfg.render_backend)
@@ -292,7 +292,8 @@ class LadevSceneEnv(BaseEnv):
 
         with Image.open(path) as img:
             size = (self.image_size[0], self.image_size[1])
-            self._overlay = np.asarray(img.convert("RGB").resize(size, Image.Resampling.BILINEAR))
+            pixels = np.array(img.convert("RGB").resize(size, Image.Resampling.BILINEAR))
+            self._overlay = torch.from_numpy(pixels)
 
     def _load_lighting(self, options: dict[str, Any]) -> None:
         light = self.profile.lighting
@@ -484,6 +485,25 @@ class LadevSceneEnv(BaseEnv):
         ids += [a.per_scene_id for a in self.objects.values()]
         return torch.unique(torch.cat([i.cpu() for i in ids]))
 
+    def _with_overlay(self, rgb: torch.Tensor, seg: torch.Tensor) -> torch.Tensor:
+        """Replace background pixels (not robot, not objects) of (1, H, W, 3) rgb by the real image."""
+        assert self._overlay is not None
+        background = ~torch.isin(seg[..., 0].cpu(), self._keep_ids())
+        out = rgb.cpu().clone()
+        out[background] = self._overlay[background[0]].to(out.dtype)
+        return out.to(rgb.device)
+
+    def _get_obs_sensor_data(self, apply_texture_transforms: bool = True) -> dict[str, Any]:
+        # Image observation modes see what policy_image() returns: overlay included.
+        obs: dict[str, Any] = super()._get_obs_sensor_data(apply_texture_transforms)
+        cam = obs.get(POLICY_CAMERA)
+        if self.overlay_active and cam is not None and "rgb" in cam:
+            seg = self.scene.sensors[POLICY_CAMERA].get_obs(
+                rgb=False, depth=False, position=False, segmentation=True
+            )["segmentation"]
+            cam["rgb"] = self._with_overlay(cam["rgb"], seg)
+        return obs
+
     def policy_image(self, overlay: bool | None = None) -> np.ndarray:
         """(H, W, 3) uint8 RGB from the policy camera, with the real background when active."""
         if POLICY_CAMERA not in self.scene.sensors:
@@ -493,14 +513,9 @@ class LadevSceneEnv(BaseEnv):
         cam = self.scene.sensors[POLICY_CAMERA]
         cam.capture()
         obs = cam.get_obs(rgb=True, depth=False, position=False, segmentation=use_overlay)
-        rgb: np.ndarray = obs["rgb"][0].cpu().numpy()
-        if use_overlay:
-            seg = obs["segmentation"][0, ..., 0].cpu()
-            background = ~torch.isin(seg, self._keep_ids()).numpy()
-            rgb = rgb.copy()
-            assert self._overlay is not None
-            rgb[background] = self._overlay[background]
-        return rgb
+        rgb = self._with_overlay(obs["rgb"], obs["segmentation"]) if use_overlay else obs["rgb"]
+        out: np.ndarray = rgb[0].cpu().numpy()
+        return out
 
     def policy_segmentation(self) -> np.ndarray:
         """(H, W) int per-scene ids seen by the policy camera (for visibility checks)."""
