@@ -97,6 +97,9 @@ def test_camera_offset_follows_the_documented_directions(build: Any) -> None:
     fwd_base = base.to_transformation_matrix()[:3, 0]
     fwd_moved = moved.to_transformation_matrix()[:3, 0]
     assert fwd_moved[2] < fwd_base[2]  # positive pitch tilts the view down
+    panned = build(make_spec(BASE, PICK, camera={"rotation_deg": [0, 0, 5]})).policy_camera_pose()
+    left_base = base.to_transformation_matrix()[:3, 1]
+    assert panned.to_transformation_matrix()[:3, 0] @ left_base > 0.05  # positive yaw pans left
 
 
 def test_robot_override_and_bad_control_mode(build: Any) -> None:

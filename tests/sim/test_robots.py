@@ -24,10 +24,12 @@ def test_pack_robot_scene(robot: str) -> None:
     from ladev_lib.sim import SimConfig, make_env
 
     spec = make_spec(OBJECTS, {"type": "put_on", "source": "green_cube", "target": "plate"}, robot=robot)
-    env = make_env(spec, SimConfig(image_size=(128, 128)), control_mode=None)
+    env = make_env(spec, SimConfig(image_size=(128, 128)), control_mode=None, obs_mode="rgb")
     try:
-        env.reset(seed=0)
+        obs, _ = env.reset(seed=0)
         u = env.unwrapped
+        # image observations carry the same picture as policy_image(), real background included
+        assert np.array_equal(obs["sensor_data"]["policy"]["rgb"][0].numpy(), u.policy_image())
         profile = get_robot(robot)
         assert u.agent.control_mode == profile.default_control_mode
         assert u.overlay_active  # the pack has this robot's real background
