@@ -24,7 +24,7 @@ import sapien.physx as physx
 import trimesh
 import trimesh.creation
 
-SURFACE_SAMPLES = 1500
+SURFACE_SAMPLES = 3000
 """Points sampled per object, on top of the mesh vertices (1 cm spacing on a can)."""
 
 # PhysX cylinders and capsules lie along their local x axis; trimesh builds them along z.

@@ -40,7 +40,7 @@ CLOSEST_MARGIN_M = 0.015
 """move_near: the object must end this much closer to the target than to any other."""
 FITTED_YAWS = 4
 """on / in: how many wrist turns (best fitting first) to try lowering with."""
-DESCENT_CLEARANCE_M = 0.006
+DESCENT_CLEARANCE_M = 0.004
 DESCENT_STEP_M = 0.004
 
 

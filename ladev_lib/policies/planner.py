@@ -27,7 +27,7 @@ import sapien
 
 from ladev_lib.policies.geometry import transform_points
 
-OCTREE_RESOLUTION_M = 0.01
+OCTREE_RESOLUTION_M = 0.006
 JOINT_VEL_SCALE = 1.3
 JOINT_ACC_SCALE = 2.5
 RRT_TIME_S = 1.0
@@ -36,6 +36,8 @@ END_ROT_TOL_RAD = 0.05
 REFINE_MAX_RAD = 0.3
 """Largest joint change the end-of-screw correction may make."""
 REFINE_STEP_RAD = 0.03
+JOINT_CHECK_STEP_RAD = 0.05
+"""Spacing of the collision checks along a straight joint-space path."""
 BRISK_PATH_STEPS = 120
 """A screw path longer than this (control steps) is compared against RRT."""
 
@@ -207,10 +209,62 @@ class ArmPlanner:
         options = [p for p in (screw, rrt) if p is not None]
         return min(options, key=lambda p: len(p.qpos)) if options else None
 
-    def reachable(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> bool:
-        """True if some joint configuration reaches ``goal`` without collision."""
+    def _use(self, avoid: bool) -> None:
         flags = self._flags(avoid)
         self._mp.planning_world.set_use_point_cloud(flags["use_point_cloud"])
         self._mp.planning_world.set_use_attach(flags["use_attach"])
-        status, _ = self._mp.IK(self._to_base(goal), np.asarray(qpos, dtype=float).copy())
-        return bool(status == "Success")
+
+    def reachable(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> bool:
+        """True if some joint configuration reaches ``goal`` without collision."""
+        return bool(self.ik_solutions(qpos, goal, avoid))
+
+    def ik_solutions(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> list[np.ndarray]:
+        """Distinct collision-free joint configurations (full qpos) that put the TCP at ``goal``."""
+        self._use(avoid)
+        status, solutions = self._mp.IK(self._to_base(goal), np.asarray(qpos, dtype=float).copy())
+        return [np.asarray(q, dtype=float) for q in solutions] if status == "Success" else []
+
+    def local_ik(self, seed: np.ndarray, goal: sapien.Pose) -> np.ndarray | None:
+        """The configuration reaching ``goal`` nearest ``seed`` (full qpos), within joint limits."""
+        full = self._mp.pad_qpos(np.asarray(seed, dtype=float).copy())
+        index = self._mp.link_name_2_idx[self._mp.move_group]
+        q, ok, _ = self._mp.pinocchio_model.compute_IK_CLIK(index, self._to_base(goal), full)
+        q = np.asarray(q, dtype=float)
+        if not ok or not self._mp.wrap_joint_limit(q.copy()) or not self._ends_at(full, q[: self.n_arm], goal):
+            return None
+        return q
+
+    def collides(self, qpos: np.ndarray, avoid: bool = True) -> bool:
+        """True if the robot at ``qpos`` touches itself or (``avoid``) the obstacles."""
+        self._use(avoid)
+        full = self._mp.pad_qpos(np.asarray(qpos, dtype=float).copy())
+        self._mp.planning_world.set_qpos_all(full[self._mp.move_group_joint_indices])
+        return bool(self._mp.planning_world.collide())
+
+    def to_qpos(self, qpos: np.ndarray, goal_q: np.ndarray, avoid: bool = True) -> ArmPath | None:
+        """A path in joint space to ``goal_q``: straight if free, else RRT-Connect."""
+        start = np.asarray(qpos, dtype=float)[: self.n_arm]
+        end = np.asarray(goal_q, dtype=float)[: self.n_arm]
+        n = max(2, int(np.ceil(np.max(np.abs(end - start)) / JOINT_CHECK_STEP_RAD)) + 1)
+        line = start + np.outer(np.linspace(0.0, 1.0, n), end - start)
+        full = np.asarray(qpos, dtype=float).copy()
+        free = True
+        for q in line[1:]:
+            full[: self.n_arm] = q
+            if self.collides(full, avoid):
+                free = False
+                break
+        if free:
+            _, positions, _, _, _ = self._mp.TOPP(line, self.time_step)
+            return ArmPath(np.asarray(positions), "joint")
+        with _quiet_native_output():
+            result = self._mp.plan_qpos_to_qpos(
+                [self._mp.pad_qpos(np.asarray(goal_q, dtype=float).copy())],
+                np.asarray(qpos, dtype=float).copy(),
+                time_step=self.time_step,
+                planning_time=RRT_TIME_S,
+                **self._flags(avoid),
+            )
+        if result["status"] != "Success":
+            return None
+        return ArmPath(np.asarray(result["position"]), "rrt")

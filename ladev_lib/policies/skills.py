@@ -45,8 +45,16 @@ TASK_TYPES: tuple[str, ...] = ("pick_up", "move_near", "put_on", "put_in")
 
 PRE_GRASP_HEIGHT_M = 0.08
 """Approach ends this far above the grasp, then the hand comes straight down."""
-CARRY_CLEARANCE_M = 0.05
-"""The carried object's bottom passes this far above every other object's top."""
+CARRY_CLEARANCE_M = 0.04
+"""The lifted object's bottom clears its neighbours' tops (and the target's) by this much."""
+CARRY_LIFT_M = 0.08
+"""move_near / put_on / put_in lift the object at least this far before carrying it."""
+NEIGHBOURHOOD_M = 0.15
+"""Objects this close (xy) to the source count as neighbours when lifting it."""
+HAND_RADIUS_M = 0.11
+"""Horizontal reach of the open hand around the TCP (half the palm's length, plus margin)."""
+REACHED_TOLERANCE_M = 0.015
+"""The hand must get this close to the grasp before closing."""
 LIFT_HEIGHT_M = 0.12
 """pick_up lifts the object's bottom this far."""
 RELEASE_GAP_M = 0.005
@@ -55,6 +63,8 @@ RETREAT_HEIGHT_M = 0.08
 NEAR_MARGIN_M = 0.08
 """move_near counts as near within both half diagonals plus this (SimplerEnv allows 5-10 cm)."""
 GRASP_CANDIDATES = 8
+IK_SOLUTIONS = 3
+"""Arm postures tried per grasp."""
 PLACE_CANDIDATES = 8
 CLOSE_STEPS = 10
 OPEN_STEPS = 6
@@ -62,6 +72,8 @@ HOLD_STEPS = 8
 SETTLE_STEPS = 10
 MAX_SETTLE_STEPS = 20
 JOINT_TOLERANCE_RAD = 0.02
+PRECISE_TOLERANCE_RAD = 0.004
+PRECISE_SPEED_RAD_S = 0.02
 
 
 @dataclass
@@ -125,6 +137,8 @@ class TaskSkill:
         self.table_z = min(g.bottom_z for g in start.values())
         self.region = region or _region_around(start)
         self._start_bottom = start[source].bottom_z
+        self._emitted = 0
+        self._failed_grasps: list[Grasp] = []
         self._actions = self._run()
 
     # -- iteration -----------------------------------------------------------
@@ -133,6 +147,7 @@ class TaskSkill:
 
     def __next__(self) -> np.ndarray:
         action = next(self._actions)
+        self._emitted += 1
         steps = self.outcome.phase_steps
         steps[self.outcome.phase] = steps.get(self.outcome.phase, 0) + 1
         return action
@@ -144,6 +159,9 @@ class TaskSkill:
     # -- state ---------------------------------------------------------------
     def _qpos(self) -> np.ndarray:
         return np.asarray(self.agent.robot.get_qpos()[0].cpu().numpy(), dtype=float)
+
+    def _qvel(self) -> np.ndarray:
+        return np.asarray(self.agent.robot.get_qvel()[0].cpu().numpy(), dtype=float)
 
     def _tcp(self) -> sapien.Pose:
         return self.agent.tcp.pose.sp
@@ -161,12 +179,20 @@ class TaskSkill:
     def _action(self) -> np.ndarray:
         return np.concatenate([self._arm_target, [self._gripper_action]]).astype(np.float32)
 
-    def _follow(self, path: ArmPath) -> Iterator[np.ndarray]:
+    def _follow(self, path: ArmPath, precise: bool = False) -> Iterator[np.ndarray]:
+        """Send the path's joint targets, then wait for the arm to catch up.
+
+        ``precise``: wait until the arm has (nearly) stopped at the end, as before
+        closing or opening the gripper: a hand still moving pushes what it lets go.
+        """
         for q in path.qpos:
             self._arm_target = np.asarray(q, dtype=float)
             yield self._action()
+        tolerance = PRECISE_TOLERANCE_RAD if precise else JOINT_TOLERANCE_RAD
         for _ in range(MAX_SETTLE_STEPS):  # let the PD controller catch up
-            if np.max(np.abs(self._qpos()[: self.planner.n_arm] - self._arm_target)) < JOINT_TOLERANCE_RAD:
+            error = np.max(np.abs(self._qpos()[: self.planner.n_arm] - self._arm_target))
+            speed = np.max(np.abs(self._qvel()[: self.planner.n_arm]))
+            if error < tolerance and (not precise or speed < PRECISE_SPEED_RAD_S):
                 break
             yield self._action()
 
@@ -214,6 +240,7 @@ class TaskSkill:
         reason = ""
         for attempt in range(1, self.max_attempts + 1):
             self.outcome.attempts = attempt
+            emitted_before = self._emitted
             try:
                 if not self._holding():
                     yield from self._pick()
@@ -239,7 +266,7 @@ class TaskSkill:
             elif self._gripper_action < self._gripper.action(self._gripper.max_opening):
                 yield from self._gripper_steps(self._gripper.max_opening, OPEN_STEPS)
                 yield from self._retreat()
-            if final:
+            if final or self._emitted == emitted_before:  # nothing moved: the same would happen
                 break
         self.outcome.status = "failed"
         self.outcome.reason = reason or "gave up"
@@ -286,27 +313,13 @@ class TaskSkill:
         src = geoms[self.source]
         others = [g.points for n, g in geoms.items() if n != self.source]
         obstacles = np.vstack(others) if others else np.zeros((0, 3))
-        grasps = top_down_grasps(src.points, obstacles, closing_of(self._tcp()))
+        grasps = [
+            g for g in top_down_grasps(src.points, obstacles, closing_of(self._tcp()))
+            if not any(_same_grasp(g, bad) for bad in self._failed_grasps)
+        ]
         if not grasps:
             raise SkillFailure(f"no top-down grasp of {self.source} fits the gripper here", final=True)
-        self.planner.detach()
-        self.planner.set_obstacles(np.vstack([obstacles, src.points]))
-        qpos = self._qpos()
-        chosen: tuple[Grasp, ArmPath, ArmPath] | None = None
-        options = [g for best in grasps[:GRASP_CANDIDATES] for g in (best, best.flipped())]
-        for grasp in options:
-            pose = grasp.pose()
-            if not self.planner.reachable(qpos, pose, avoid=False):
-                continue
-            pre = sapien.Pose([0.0, 0.0, PRE_GRASP_HEIGHT_M]) * pose
-            approach = self.planner.plan(qpos, pre, avoid=True)
-            if approach is None:
-                continue
-            descend = self.planner.screw(self._padded(approach.qpos[-1]), pose, avoid=False)
-            if descend is None:
-                continue
-            chosen = (grasp, approach, descend)
-            break
+        chosen = self._choose_grasp(grasps, geoms, obstacles)
         if chosen is None:
             raise SkillFailure(
                 f"none of {min(len(grasps), GRASP_CANDIDATES)} grasps of {self.source} is reachable "
@@ -318,25 +331,70 @@ class TaskSkill:
         self._gripper_action = self._gripper.action(grasp.opening_m)
         yield from self._follow(approach)
         self._phase("descend")
-        yield from self._follow(descend)
+        yield from self._follow(descend, precise=True)
+        off = float(np.linalg.norm(np.asarray(self._tcp().p) - grasp.position))
+        if off > REACHED_TOLERANCE_M:
+            self._failed_grasps.append(grasp)
+            raise SkillFailure(f"the hand stopped {off:.3f} m short of the grasp of {self.source}")
         self._phase("grasp")
         yield from self._gripper_steps(self._gripper.min_opening, CLOSE_STEPS)
         self._phase("lift")
         tcp = self._tcp()
         depth = float(tcp.p[2]) - src.bottom_z
-        if self.task_type == "pick_up":
-            lift_z = src.bottom_z + LIFT_HEIGHT_M + depth
-        else:
-            lift_z = self._carry_height(geoms, depth)
-        up = sapien.Pose([0.0, 0.0, lift_z - float(tcp.p[2])]) * tcp
+        up = sapien.Pose([0.0, 0.0, self._lift_height(geoms, depth) - float(tcp.p[2])]) * tcp
         yield from self._follow(self._straight(up, "lift", obstacles, held=src))
         if not self._holding():
+            self._failed_grasps.append(grasp)
             raise SkillFailure(f"grasp of {self.source} did not hold (width {grasp.width_m:.3f} m)")
 
-    def _carry_height(self, geoms: dict[str, ObjectGeometry], depth: float) -> float:
-        tops = [g.top_z for n, g in geoms.items() if n != self.source]
-        highest = max(tops) if tops else self.table_z
-        return max(highest + CARRY_CLEARANCE_M + depth, float(self._tcp().p[2]) + 0.05)
+    def _choose_grasp(self, grasps: list[Grasp], geoms: dict[str, ObjectGeometry],
+                      obstacles: np.ndarray) -> tuple[Grasp, ArmPath, ArmPath] | None:
+        """The first grasp (best first, either hand orientation) with a free way there and down.
+
+        Works back from the grasp: an arm configuration at the grasp that touches no other
+        object, the configuration above it in the same arm posture (just above the object,
+        or above the tallest object when the arm does not fit beside a tall neighbour), a
+        straight way down between the two, and a way from here to the top one.
+        Near the grasp the hand's clearance was checked on the points themselves, to the
+        millimetre; the planner's coarser cells only guard the rest of the arm.
+        """
+        src = geoms[self.source]
+        self.planner.detach()
+        qpos = self._qpos()
+        tallest = max((g.top_z for n, g in geoms.items() if n != self.source), default=src.top_z)
+        arm_obstacles = _away_from_hand(obstacles, src.points.mean(axis=0))
+        options = [g for best in grasps[:GRASP_CANDIDATES] for g in (best, best.flipped())]
+        for grasp in options:
+            pose = grasp.pose()
+            self.planner.set_obstacles(arm_obstacles)
+            for at_grasp in self.planner.ik_solutions(qpos, pose, avoid=True)[:IK_SOLUTIONS]:
+                for height in (PRE_GRASP_HEIGHT_M, max(tallest, src.top_z) + 0.06 - grasp.position[2]):
+                    pre = sapien.Pose([0.0, 0.0, height]) * pose
+                    above = self.planner.local_ik(at_grasp, pre)
+                    if above is None:
+                        continue
+                    self.planner.set_obstacles(arm_obstacles)
+                    descend = self.planner.screw(above, pose, avoid=True)
+                    if descend is None:
+                        continue
+                    self.planner.set_obstacles(np.vstack([obstacles, src.points]))
+                    if self.planner.collides(above, avoid=True):
+                        continue
+                    approach = self.planner.to_qpos(qpos, above, avoid=True)
+                    if approach is not None:
+                        return grasp, approach, descend
+        return None
+
+    def _lift_height(self, geoms: dict[str, ObjectGeometry], depth: float) -> float:
+        """TCP height to lift to: the object's bottom clear of its neighbours, or LIFT_HEIGHT_M up."""
+        src = geoms[self.source]
+        if self.task_type == "pick_up":
+            return src.bottom_z + LIFT_HEIGHT_M + depth
+        centre = src.xy.mean(axis=0)
+        near = [g.top_z for n, g in geoms.items()
+                if n != self.source and np.min(np.linalg.norm(g.xy - centre, axis=1)) < NEIGHBOURHOOD_M]
+        bottom = max([src.bottom_z + CARRY_LIFT_M] + [top + CARRY_CLEARANCE_M for top in near])
+        return bottom + depth
 
     # -- place ---------------------------------------------------------------
     def _held(self, src: ObjectGeometry) -> HeldObject:
@@ -362,7 +420,7 @@ class TaskSkill:
         everything = np.vstack([tgt.points, other_pts])
         held = self._held(src)
         tcp = self._tcp()
-        carry_z = float(tcp.p[2])
+        carry_z = max(float(tcp.p[2]), tgt.top_z + held.bottom_below_tcp + CARRY_CLEARANCE_M)
         candidates = self._placements(held, src, tgt, others, other_pts, carry_z)
         if not candidates:
             raise SkillFailure(
@@ -400,7 +458,7 @@ class TaskSkill:
         if not self._holding():
             raise SkillFailure(f"{self.source} fell while carried")
         self._phase("lower")
-        yield from self._follow(self._straight(release, "lower", everything, held=src))
+        yield from self._follow(self._straight(release, "lower", everything, held=src), precise=True)
         self._phase("release")
         yield from self._gripper_steps(self._release_opening(src), OPEN_STEPS)
         yield from self._retreat()
@@ -483,6 +541,23 @@ class _GripperMap:
     def action(self, opening: float) -> float:
         joint = float(np.clip(opening / 2, self.lower, self.upper))
         return 2 * (joint - self.lower) / (self.upper - self.lower) - 1
+
+
+def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
+    """Obstacle points the arm must avoid beyond the hand's own reach around a grasp.
+
+    Around the grasp the hand's clearance was checked on the points themselves (to
+    millimetres); the planner's coarser cells would reject grasps that fit.
+    """
+    near = (np.linalg.norm(points[:, :2] - tcp[:2], axis=1) < HAND_RADIUS_M) & (
+        points[:, 2] < tcp[2] + PRE_GRASP_HEIGHT_M + 0.05
+    )
+    return points[~near]
+
+
+def _same_grasp(a: Grasp, b: Grasp) -> bool:
+    """Nearly the same grasp (position within 1 cm, closing within ~15 degrees, either sign)."""
+    return bool(np.linalg.norm(a.position - b.position) < 0.01 and abs(a.closing @ b.closing) > 0.96)
 
 
 def _yaw_quat(yaw: float) -> np.ndarray:

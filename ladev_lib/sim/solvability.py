@@ -53,12 +53,23 @@ class SolvabilityResult(BaseModel):
         return self.status == "solved"
 
 
-def make_check_env(spec: SceneSpec, sim_config: SimConfig | None = None) -> Any:
-    """A state-only Panda env for the oracle (no camera: nothing is rendered)."""
+def make_check_env(
+    spec: SceneSpec, sim_config: SimConfig | None = None, *, prefer_meshes: bool = True
+) -> Any:
+    """A state-only Panda env for the oracle (no camera: nothing is rendered).
+
+    ``prefer_meshes=False`` builds stand-ins even where ``MS_ASSET_DIR`` has meshes.
+    """
     from ladev_lib.sim import make_env
 
-    return make_env(spec, sim_config, control_mode=OraclePolicy.info.control_mode,
-                    image_size=None, obs_mode="none")
+    return make_env(
+        spec,
+        sim_config,
+        control_mode=OraclePolicy.info.control_mode,
+        image_size=None,
+        obs_mode="none",
+        prefer_meshes=prefer_meshes,
+    )
 
 
 def check_solvable(
@@ -131,6 +142,7 @@ def check_scenes(
     sim_config: SimConfig | None = None,
     *,
     max_steps: int | None = None,
+    prefer_meshes: bool = True,
 ) -> Iterator[SolvabilityResult]:
     """Check many scenes with one env; a scene whose check crashes becomes an ``error`` row."""
     env = None
@@ -138,7 +150,7 @@ def check_scenes(
         for spec in specs:
             try:
                 if env is None:
-                    env = make_check_env(spec, sim_config)
+                    env = make_check_env(spec, sim_config, prefer_meshes=prefer_meshes)
                 yield check_solvable(spec, sim_config, env=env, max_steps=max_steps)
             except Exception as exc:  # a crash is data here: report it, keep checking the rest
                 yield SolvabilityResult(
