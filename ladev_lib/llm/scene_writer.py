@@ -63,8 +63,8 @@ def region_words(x: float, y: float, bounds: SceneBounds) -> str:
     (x0, x1), (y0, y1) = bounds.workspace_x_m, bounds.workspace_y_m
     fx = (x - x0) / (x1 - x0)
     fy = (y - y0) / (y1 - y0)
-    vertical = "front" if fx > 0.6 else "back" if fx < 0.4 else ""
-    horizontal = "left" if fy > 0.6 else "right" if fy < 0.4 else ""
+    vertical = "front" if fx > 2 / 3 else "back" if fx < 1 / 3 else ""
+    horizontal = "left" if fy > 2 / 3 else "right" if fy < 1 / 3 else ""
     if vertical and horizontal:
         return f"{vertical} {horizontal}"
     return vertical or horizontal or "middle"
@@ -77,10 +77,12 @@ def _where(p: ObjectPlacement, style: str, rng: np.random.Generator, bounds: Sce
     if r < 0.4:
         words = region_words(p.x, p.y, bounds)
         if words == "middle":
-            return "in the middle"
-        return rng.choice([f"on the {words}", f"at the {words}", f"in the {words}"]) + (
-            " side" if " " not in words and rng.random() < 0.3 else ""
-        )
+            return str(rng.choice(["in the middle", "in the center"]))
+        if words in ("left", "right"):
+            return str(rng.choice([f"on the {words}", f"on the {words} side", f"to the {words}"]))
+        if words in ("front", "back"):
+            return str(rng.choice([f"at the {words}", f"in the {words}"]))
+        return str(rng.choice([f"in the {words} corner", f"at the {words}", f"{words}"]))
     if r < 0.5:
         return f"at ({p.x:.3f}, {p.y:.3f})"
     return None
@@ -178,7 +180,7 @@ def _prose(items: list[_Item], randoms: int, env: list[str], set_word: str, rng:
     if randoms:
         named.append(f"{_count(randoms, rng)} other {set_word}{_plural(randoms, 'object')}")
     listing = named[0] if len(named) == 1 else ", ".join(named[:-1]) + " and " + named[-1]
-    opener = str(rng.choice(["On the table there are", "The scene holds", "Put", "A table with"]))
+    opener = str(rng.choice(["On the table there are", "The scene holds", "Place", "A table with"]))
     if n == 1:
         opener = str(rng.choice(["On the table there is", "The scene holds", "A table with"]))
         text = f"{opener} {listing}."

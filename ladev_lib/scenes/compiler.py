@@ -115,9 +115,18 @@ class _Slot:
     mention: str | None = None
 
 
+def _same(slot: _Slot, res: Resolution) -> bool:
+    """Does this slot hold the object (or an object of the category) a mention resolved to?"""
+    if res.obj is not None:
+        return slot.obj is not None and slot.obj.id == res.obj.id
+    if res.category is not None:
+        return slot.category == res.category or (slot.obj is not None and slot.obj.category == res.category)
+    return False
+
+
 # -- regions of the workspace, from the robot's point of view ----------------------
 
-_BAND = 0.4  # a side region is the outer 40% of the workspace along its axis
+_BAND = 1 / 3  # a side region is the outer third of the workspace along its axis
 
 
 def region_box(
@@ -194,6 +203,13 @@ class _Compilation:
             n = int(self.rng.integers(lo, hi + 1))
             self.slots = [_Slot() for _ in range(n)]
             self.notes.append(f"no objects named: {n} random object(s)")
+        # An object named only as a reference ("near the bowl") is in the scene too.
+        for slot in list(self.slots):
+            pos = slot.position
+            if pos is not None and pos.relation is not None and pos.reference:
+                res = self.resolve(pos.reference, "position reference")
+                if not any(s is not slot and _same(s, res) for s in self.slots):
+                    self._ensure(res, "reference", pos.reference)
 
     def _slot_for(self, op: AddObject) -> _Slot:
         if op.object is None or not op.object.strip():
@@ -207,13 +223,7 @@ class _Compilation:
     def _ensure(self, res: Resolution, role: str, mention: str) -> _Slot:
         """The slot holding this object (or category); it takes a random slot or is added."""
         for slot in self.slots:
-            if slot.role != "distractor":
-                continue
-            if res.obj is not None and slot.obj is not None and slot.obj.id == res.obj.id:
-                return slot
-            if res.category is not None and (
-                slot.category == res.category or (slot.obj is not None and slot.obj.category == res.category)
-            ):
+            if slot.role == "distractor" and _same(slot, res):
                 return slot
         for slot in self.slots:
             if slot.obj is None and slot.category is None and slot.role == "distractor":
