@@ -118,7 +118,7 @@ _STOP_PREPOSITIONS = {
 
 _HEADERS = re.compile(
     r"(?:^|(?<=[.;!?])\s*)\s*(number and details of objects|details of objects|objects and details|"
-    r"object configuration|objects|environmental setup|environment setup|environment|setup|scene)\s*:",
+    r"object configuration|objects|environmental setup|environment setup|environment|setup|scene)\s*:(?!\s*\d)",
 )
 _COORD2 = re.compile(
     rf"[\(\[]\s*(?:x\s*=\s*)?({_NUM})\s*(cm|mm|m)?\s*[,;]\s*(?:y\s*=\s*)?({_NUM})\s*(cm|mm|m)?\s*[\)\]]"
@@ -131,6 +131,9 @@ _COUNT_TOTAL = re.compile(
     r"|(?:\b(\d+)\s+(?:(?:different|distinct|total|items?|objects?|things?|props?|pieces?|random|other|more|additional|extra|"
     r"distractors?|small|household|kitchen|everyday|assorted|various|ycb|simplerenv|simpler)\s+){0,3}?"
     r"(?:objects?|items?|things?|props?|pieces?|distractors?)\b)"
+)
+_KEYED_COUNT = re.compile(
+    r"\b(?:number of objects|num_objects|n_objects|objects|object count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)\b"
 )
 _RANDOM_QUALIFIER = re.compile(r"\b(?:random|other|more|additional|extra|distractors?|arbitrary|unspecified|further)\b")
 
@@ -284,6 +287,8 @@ def _protect(text: str) -> tuple[str, dict[str, tuple[float, ...]]]:
 
     text = _COORD3.sub(keep3, text)
     text = _COORD2.sub(keep2, text)
+    # "2 cans: a pepsi can and a sprite can" states the count, like "2 objects: ...".
+    text = re.sub(r"\b(\d+)\s+[a-z]+s\s*:", r"\1 objects:", text)
     return text, slots
 
 
@@ -332,6 +337,13 @@ class _Reader:
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
         self._object_set(sentence)
+        # "objects: 2" would be cut apart at the colon below: read it first.
+        keyed = _KEYED_COUNT.search(sentence)
+        if keyed is not None:
+            if self.out.total is None:
+                self.out.total = int(keyed.group(1))
+            self.out.recognised += 1
+            sentence = sentence[: keyed.start()] + " " + sentence[keyed.end():]
         previous = self._previous_domain
         last_object: _ObjectOp | None = None
         for clause in _clauses(sentence):

@@ -164,7 +164,9 @@ def relation_box(
         return (ref_x + 0.03, ref_x + distance + side), (ref_y - side, ref_y + side)
     if relation == "behind":
         return (ref_x - distance - side, ref_x - 0.03), (ref_y - side, ref_y + side)
-    return (ref_x - distance, ref_x + distance), (ref_y - distance, ref_y + distance)
+    # 'near': the square inscribed in the circle of radius `distance`, so every point is near.
+    half = distance / math.sqrt(2)
+    return (ref_x - half, ref_x + half), (ref_y - half, ref_y + half)
 
 
 # -- the compiler ----------------------------------------------------------------------
