@@ -133,7 +133,8 @@ _COUNT_TOTAL = re.compile(
     r"(?:objects?|items?|things?|props?|pieces?|distractors?)\b)"
 )
 _KEYED_COUNT = re.compile(
-    r"\b(?:number of objects|num_objects|n_objects|objects|object count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)\b"
+    r"\b(?:number of objects|num_objects|n_objects|objects|object count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)"
+    r"\s*(?=$|[;,.)\n])"  # "objects: 7" but not "objects: 7-up can"
 )
 _RANDOM_QUALIFIER = re.compile(r"\b(?:random|other|more|additional|extra|distractors?|arbitrary|unspecified|further)\b")
 
@@ -189,6 +190,9 @@ class Vocabulary:
             if o.get("category"):
                 categories.add(str(o["category"]).replace("_", " "))
         canonical = {_digits(n): n for n in names}
+        for form, name in list(canonical.items()):
+            if _SPLIT_WORDS.search(form):
+                canonical[form.replace(" ", "~")] = name
         return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories)
 
     @property
@@ -233,8 +237,14 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
         if len(cid) >= 4 and cid in t:
             t = re.sub(rf"(?<![a-z0-9]){re.escape(cid)}(?![a-z0-9])", display, t)
     t = re.sub(r"(?<=[a-z])-(?=[a-z0-9])|(?<=[0-9])-(?=[a-z])", " ", t)
-    t = _digits(t.replace("_", " "))
-    return re.sub(r"[ \t]+", " ", t)
+    t = re.sub(r"[ \t]+", " ", _digits(t.replace("_", " ")))
+    # Names such as 'cup with a handle' must survive clause splitting at 'with'.
+    for name in vocab.names:
+        if "~" in name:
+            spaced = name.replace("~", " ")
+            if spaced in t:
+                t = re.sub(rf"(?<![a-z0-9]){re.escape(spaced)}(?![a-z0-9])", name, t)
+    return t
 
 
 # -- results ---------------------------------------------------------------------
@@ -297,12 +307,14 @@ def _sentences(text: str) -> list[str]:
     return [p.strip(" \t-*•:,") for p in parts if p and p.strip(" \t-*•:,")]
 
 
+_SPLIT_WORDS = re.compile(
+    r"\band then\b|\band\b|\bwhile\b|\bbut\b|\bplus\b|\bwith\b|\bincluding\b|\bsuch as\b|"
+    r"\bwhereas\b|\balong with\b|\bas well as\b"
+)
+
+
 def _clauses(sentence: str) -> list[str]:
-    parts = re.split(
-        r",|\band then\b|\band\b|\bwhile\b|\bbut\b|\bplus\b|\bwith\b|\bincluding\b|\bsuch as\b|"
-        r"\bwhereas\b|\balong with\b|\bas well as\b|:",
-        sentence,
-    )
+    parts = re.split(rf",|:|(?<!~)(?:{_SPLIT_WORDS.pattern})(?!~)", sentence)
     return [p.strip() for p in parts if p and p.strip()]
 
 

@@ -423,7 +423,8 @@ class _Compilation:
         norm = float(np.linalg.norm(t))
         if norm > max_t + 1e-9:
             self.notes.append(f"camera move {norm * 100:.1f} cm clamped to {max_t * 100:.1f} cm")
-            t = t * (max_t / norm)
+            # Truncate towards zero so that rounding cannot push the move past the bound.
+            t = np.trunc(t * (max_t / norm) * 1e4) / 1e4
         for k, axis in enumerate(("roll", "pitch", "yaw")):
             if abs(r[k]) > max_r + 1e-9:
                 self.notes.append(f"camera {axis} {r[k]:+.1f} deg clamped to {math.copysign(max_r, r[k]):+.1f} deg")

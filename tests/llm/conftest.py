@@ -3,6 +3,7 @@ OpenAI-compatible HTTP server."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import threading
 import time
@@ -86,10 +87,9 @@ def openai_server() -> Iterator[FakeServer]:
             for k, v in (headers or {}).items():
                 self.send_header(k, v)
             self.end_headers()
-            try:
+            # The client may have given up already (timeout tests).
+            with contextlib.suppress(BrokenPipeError, ConnectionResetError):
                 self.wfile.write(data)
-            except (BrokenPipeError, ConnectionResetError):
-                pass  # the client gave up (timeout tests)
 
         def do_POST(self) -> None:  # noqa: N802 - http.server's name
             body = json.loads(self.rfile.read(int(self.headers.get("Content-Length", 0))) or b"{}")

@@ -6,7 +6,12 @@ import math
 
 import pytest
 
-from ladev_lib.scenes.compiler import CompileConfig, DesignExpectation, compile_operations, region_box
+from ladev_lib.scenes.compiler import (
+    CompileConfig,
+    DesignExpectation,
+    compile_operations,
+    region_box,
+)
 from ladev_lib.scenes.operations import SceneOperations
 from ladev_lib.scenes.placement import footprint, overlaps
 from ladev_lib.scenes.spec import SceneBounds

@@ -3,7 +3,13 @@ from __future__ import annotations
 import pytest
 from pydantic import ValidationError
 
-from ladev_lib.scenes.operations import AddObject, MoveCamera, Position, SceneOperations, operations_json_schema
+from ladev_lib.scenes.operations import (
+    AddObject,
+    MoveCamera,
+    Position,
+    SceneOperations,
+    operations_json_schema,
+)
 
 
 def test_operations_parse_by_op_name_and_round_trip():

@@ -1,5 +1,7 @@
 from __future__ import annotations
 
+import zlib
+
 import numpy as np
 
 from ladev_lib.scenes.resolve import ObjectResolver, clean_mention
@@ -37,10 +39,10 @@ def test_categories_resolve_to_a_category(exact_resolver):
 def test_embedding_match_above_threshold_and_unavailable_below(catalog):
     # A stand-in embedding: words hashed into a bag of words, so that the test runs without a model.
     def embed(texts):
-        out = np.zeros((len(texts), 64), dtype=np.float32)
+        out = np.zeros((len(texts), 1024), dtype=np.float32)
         for i, t in enumerate(texts):
             for w in clean_mention(t).split():
-                out[i, hash(w) % 64] += 1.0
+                out[i, zlib.crc32(w.encode()) % 1024] += 1.0
         norms = np.linalg.norm(out, axis=1, keepdims=True)
         return out / np.maximum(norms, 1e-9)
 
