@@ -393,14 +393,14 @@ class _Reader:
             return "camera"
         if previous == "lighting" and (_DARKER.search(clause) or _BRIGHTER.search(clause) or re.search(_NUM, clause)):
             return "lighting"
-        if (hint == "environment" or previous in ("lighting", "camera", "environment")) and (
-            self.vocab.name_pattern.search(clause) is None and not _COUNT_TOTAL.search(clause)
-        ):
-            return "environment"
         if re.search(r"\bbright(?:ness)?\b|\bdark(?:ness)?\b", clause) and re.search(
             r"\b(?:scene|room|environment|it is|its)\b", clause
         ):
             return "lighting"
+        if (hint == "environment" or previous in ("lighting", "camera", "environment")) and (
+            self.vocab.name_pattern.search(clause) is None and not _COUNT_TOTAL.search(clause)
+        ):
+            return "environment"
         return "objects"
 
     def _object_set(self, sentence: str) -> None:
@@ -631,6 +631,7 @@ class _Reader:
             value = float(factor.group(1) or factor.group(2))
             self.out.lighting.append({"op": "set_lighting", "intensity_delta": round(value - 1.0, 4)})
             return
+        text = re.sub(r"\b(?:by )?half\b|\bhalved\b", " 50% ", text)
         nums = [m for m in re.finditer(rf"(?<![\w.@]){_NUM}(?:\s*(%))?", text)]
         darker, brighter = _DARKER.search(text), _BRIGHTER.search(text)
         sign = -1.0 if darker and not brighter else 1.0 if brighter and not darker else 0.0
@@ -723,6 +724,13 @@ class _Reader:
                 scale = _length_scale(unit) if unit else (0.01 if abs(value) > 0.5 else 1.0)
                 translation["xyz".index(axis[-1])] += value * scale
             found = True
+        for m in re.finditer(
+            rf"({_NUM})\s*(cm|mm|m)?\s*(?:in|along|on)\s+(?:the\s+)?(x|y|z)(?:\s*(?:axis|direction))?\b", part
+        ):
+            value, unit, axis = float(m.group(1)), m.group(2), m.group(3)
+            scale = _length_scale(unit) if unit else (0.01 if abs(value) > 0.5 else 1.0)
+            translation["xyz".index(axis)] += value * scale
+            found = True
         if found:
             return translation, rotation, True
         dist = re.search(
@@ -759,8 +767,12 @@ class _Reader:
             else:  # left, or a pan / yaw / turn without a direction
                 rotation[2] += value
             return translation, rotation, True
-        move_verb = re.search(r"\b(mov\w*|shift\w*|translat\w*|slid\w*|displac\w*|rais\w*|lower\w*|offset)\b", part)
-        if dist is None and (move_verb is None or dir_word is None):
+        move_verb = re.search(
+            r"\b(mov\w*|shift\w*|translat\w*|slid\w*|displac\w*|rais\w*|lower\w*|offset|push\w*|pull\w*|nudg\w*)\b",
+            part,
+        )
+        comparative = dir_word in ("higher", "lower", "closer", "farther", "further", "raised", "lowered")
+        if dist is None and ((move_verb is None and not comparative) or dir_word is None):
             return translation, rotation, False
         value = float(dist.group(1)) * _length_scale(dist.group(2)) if dist is not None else strength / 100
         if dir_word is None:

@@ -227,6 +227,12 @@ class _Compilation:
         for slot in self.slots:
             if slot.role == "distractor" and _same(slot, res):
                 return slot
+        if res.obj is not None:
+            # "two fruits" + "pick up the orange": the orange is one of the fruits.
+            for slot in self.slots:
+                if slot.role == "distractor" and slot.obj is None and slot.category == res.obj.category:
+                    slot.obj, slot.mention = res.obj, mention
+                    return slot
         for slot in self.slots:
             if slot.obj is None and slot.category is None and slot.role == "distractor":
                 slot.obj, slot.category, slot.mention = res.obj, res.category, mention
