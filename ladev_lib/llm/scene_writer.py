@@ -123,12 +123,17 @@ def lighting_phrase(delta: float, style: str, rng: np.random.Generator) -> str:
     return str(rng.choice(templates))
 
 
-def camera_phrases(camera: CameraOffset, style: str) -> list[str]:
-    """The camera change as short phrases (largest components, rounded to cm and degrees)."""
+def camera_phrases(camera: CameraOffset, style: str, bounds: SceneBounds | None = None) -> list[str]:
+    """The camera change as short phrases (rounded to cm and degrees, kept within the bounds)."""
     if camera.is_default:
         return []
+    bounds = bounds or SceneBounds()
     cm = [round(v * 100) for v in camera.translation_m]
     deg = [round(v) for v in camera.rotation_deg]
+    while math.hypot(*cm) > bounds.camera_max_translation_m * 100 + 1e-9:
+        k = max(range(3), key=lambda i: abs(cm[i]))
+        cm[k] -= 1 if cm[k] > 0 else -1  # rounding up must not leave the bound
+    deg = [max(-int(bounds.camera_max_rotation_deg), min(int(bounds.camera_max_rotation_deg), d)) for d in deg]
     if not any(cm) and not any(deg):
         k = int(np.argmax(np.abs(camera.translation_m)))
         cm[k] = 1 if camera.translation_m[k] > 0 else -1
@@ -276,7 +281,7 @@ def write_scene(
     light = lighting_phrase(spec.lighting.intensity_delta, style, rng)
     if light:
         env.append(light)
-    env += camera_phrases(spec.camera, style)
+    env += camera_phrases(spec.camera, style, bounds)
     set_word = ""
     if object_set == "ycb" and rng.random() < 0.7:
         set_word = "YCB "
