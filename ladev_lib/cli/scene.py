@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import importlib
 import json
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -23,13 +24,30 @@ from ladev_lib.scenes.text_to_scene import CompiledScene, SceneText
 TASK_CHOICES = ["pick_up", "move_near", "put_on", "put_in"]
 
 
-def find_renderer() -> Any | None:
-    """``ladev_lib.sim.render_spec(spec, path)`` when the simulation package provides it."""
+Renderer = Callable[[SceneSpec, Path, dict[str, Any]], list[Path]]
+
+
+def find_renderer() -> Renderer | None:
+    """Render with ``ladev_lib.sim.render`` (policy | overview PNG), when this install has it."""
     try:
-        sim = importlib.import_module("ladev_lib.sim")
-    except ImportError:
+        render = importlib.import_module("ladev_lib.sim.render")
+    except ModuleNotFoundError as exc:
+        if exc.name in ("ladev_lib.sim.render", "ladev_lib.sim"):
+            return None
+        raise
+    render_spec, save_shots = getattr(render, "render_spec", None), getattr(render, "save_shots", None)
+    if render_spec is None or save_shots is None:
         return None
-    return getattr(sim, "render_spec", None)
+
+    def renderer(spec: SceneSpec, path: Path, cfg: dict[str, Any]) -> list[Path]:
+        from ladev_lib.config import section
+        from ladev_lib.sim.config import SimConfig
+
+        shots = render_spec(spec, section(cfg, "sim", SimConfig))
+        saved: list[Path] = save_shots(shots, path)
+        return saved
+
+    return renderer
 
 
 def _print_text(result: CompiledScene, description: str, backend: str) -> None:
@@ -120,10 +138,10 @@ def command(
             fallback.parent.mkdir(parents=True, exist_ok=True)
             fallback.write_text(result.spec.to_json() + "\n", encoding="utf-8")
             click.echo(
-                f"cannot render: this install's ladev_lib.sim has no render_spec(); spec saved to {fallback} "
-                f"(render it with `ladev render {fallback}` once available)",
+                f"cannot render: this install has no ladev_lib.sim.render; spec saved to {fallback} "
+                f"(render it with `ladev render {fallback}` where the simulator is installed)",
                 err=True,
             )
             raise SystemExit(2)
-        renderer(result.spec, render_path)
-        click.echo(f"rendered to {render_path}", err=as_json)
+        for written in renderer(result.spec, render_path, tools.config):
+            click.echo(f"rendered to {written} (policy camera | overview)", err=as_json)

@@ -48,7 +48,11 @@ def test_scene_json_output_and_rejection_exit_code(conf):
 
 def test_render_uses_the_simulator_when_present_and_says_so_when_not(conf, tmp_path, monkeypatch):
     rendered = []
-    monkeypatch.setattr(scene_cli, "find_renderer", lambda: lambda spec, path: rendered.append((spec, path)))
+    def fake(spec, path, cfg):
+        rendered.append((spec, path))
+        return [path]
+
+    monkeypatch.setattr(scene_cli, "find_renderer", lambda: fake)
     ok = CliRunner().invoke(cli, ["scene", PAPER_EXAMPLE, "--render", "scene.png", "--config-dir", conf])
     assert ok.exit_code == 0 and rendered and rendered[0][1].name == "scene.png"
     monkeypatch.setattr(scene_cli, "find_renderer", lambda: None)
