@@ -83,3 +83,16 @@ def test_compile_writes_one_line_per_input_with_status_and_reason(conf, tmp_path
     assert "not JSON" in out[2]["reason"] and "description" in out[3]["reason"]
     assert "unknown object" in out[4]["reason"] and "not a container" in out[5]["reason"]
     assert "compiled 6 descriptions: 2 ok, 4 rejected" in result.output
+
+
+@pytest.mark.sim
+def test_scene_render_writes_a_picture_of_the_scene(conf, tmp_path):
+    import numpy as np
+    from PIL import Image
+
+    result = CliRunner().invoke(cli, ["scene", PAPER_EXAMPLE, "--task", "pick_up", "--render", "scene.png",
+                                      "--config-dir", conf])
+    assert result.exit_code == 0, result.output
+    assert "rendered to" in result.output
+    image = np.asarray(Image.open(tmp_path / "scene.png"))
+    assert image.ndim == 3 and image.shape[0] >= 128 and image.std() > 10  # a picture, not a blank
