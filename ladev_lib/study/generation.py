@@ -23,8 +23,8 @@ from ladev_lib.catalog import Catalog
 from ladev_lib.errors import LLMCallError
 from ladev_lib.llm.client import JsonResult, LLMClient
 from ladev_lib.llm.config import LLMConfig
+from ladev_lib.llm.grammar import parse_instruction
 from ladev_lib.llm.prompts import PromptTemplate, build_request
-from ladev_lib.llm.scene_grammar import parse_instruction
 from ladev_lib.scenes.text_to_scene import object_listing
 from ladev_lib.study.design import Batch, DesignedScene, StudyConfig, plan_batches
 from ladev_lib.tables import SceneDesignRow

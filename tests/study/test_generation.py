@@ -9,8 +9,8 @@ import pytest
 from ladev_lib.llm import LLMResponse
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig, make_client
+from ladev_lib.llm.grammar import Vocabulary, read_description
 from ladev_lib.llm.prompts import load_prompts
-from ladev_lib.llm.scene_grammar import Vocabulary, read_description
 from ladev_lib.llm.scene_writer import STYLES, write_scene
 from ladev_lib.scenes.compiler import DesignExpectation, compile_operations
 from ladev_lib.scenes.operations import SceneOperations
