@@ -9,8 +9,9 @@ Run it on an env right after ``reset`` (the env has spawned and settled the obje
 Checks (each a named boolean in ``verdict.checks``):
 - ``no_interpenetration``: no two objects, nor an object and the robot, overlap by more
   than 3 mm when spawned (PhysX contact separation after the first step).
-- ``at_rest``: while settling, no object slid or rolled more than ``max_shift_m`` in xy,
-  tilted more than ``max_tilt_deg`` (round objects excepted), or dropped below the table top; and all are still
+- ``at_rest``: while settling, no object slid more than ``max_shift_m`` in xy (round
+  objects: plus their radius, as scanned balls roll onto a facet), tilted more than
+  ``max_tilt_deg`` (round objects excepted), or dropped below the table top; and all are still
   when settling ends.
 - ``reachable``: the source and the target lie within the robot's reach (horizontal
   distance from the robot base, per robot profile).
@@ -82,12 +83,13 @@ def _at_rest(env: LadevSceneEnv, th: ValidityThresholds) -> tuple[list[str], dic
         tilt = _tilt_deg(spawn[3:], settled[3:])
         drop = float(spawn[2] - settled[2])
         speed, spin = report.settled_speeds[name]
+        round_ = _is_round(env, name)
         moves[name] = {"shift_m": shift, "tilt_deg": tilt, "drop_m": drop, "speed": speed, "spin": spin}
         if drop > th.max_drop_m + env.built[name].bottom_z:
             reasons.append(f"{name!r} fell off the table while settling (dropped {drop * 100:.0f} cm)")
-        elif tilt > th.max_tilt_deg and not _is_round(env, name):
+        elif tilt > th.max_tilt_deg and not round_:
             reasons.append(f"{name!r} fell over while settling (tilted {tilt:.0f} deg)")
-        elif shift > th.max_shift_m:
+        elif shift > th.max_shift_m + (float(env.built[name].half_extents[0]) if round_ else 0.0):
             reasons.append(f"{name!r} slid or rolled {shift * 100:.1f} cm while settling")
         elif speed > th.max_speed_m_s or spin > th.max_spin_rad_s:
             reasons.append(f"{name!r} is still moving after settling ({speed:.3f} m/s, {spin:.2f} rad/s)")
