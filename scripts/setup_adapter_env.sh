@@ -27,6 +27,7 @@ case "$FAMILY" in
 esac
 REQ="mk/adapters/$FAMILY.txt"
 NODEPS="mk/adapters/$FAMILY.nodeps.txt"
+WRITER="mk/adapters/$FAMILY.writer.txt"
 EXTRA_SRC=""
 [ "$FAMILY" = octo ] && EXTRA_SRC="${OCTO_SPEC:-}"
 
@@ -41,6 +42,7 @@ PY="$VENV/bin/python"
 stamp="$VENV/.ladev-adapter-stamp"
 inputs=(mk/adapters/base.txt "$REQ" scripts/setup_adapter_env.sh)
 [ -f "$NODEPS" ] && inputs+=("$NODEPS")
+[ -f "$WRITER" ] && inputs+=("$WRITER")
 want="$(cat "${inputs[@]}" | sha256sum | cut -d' ' -f1) framework=$FRAMEWORK src=$EXTRA_SRC"
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
     log "up to date ($VENV)"
@@ -56,6 +58,10 @@ log "installing $REQ and mk/adapters/base.txt"
 if [ -f "$NODEPS" ]; then
     log "installing $NODEPS without dependencies"
     "$PY" -m pip install -q --no-deps -r "$NODEPS"
+fi
+if [ -f "$WRITER" ]; then
+    log "installing $WRITER into $VENV/writer-site (test checkpoint writer only)"
+    "$PY" -m pip install -q --no-deps --upgrade --target "$VENV/writer-site" -r "$WRITER"
 fi
 if [ -n "$EXTRA_SRC" ]; then
     log "installing model code from $EXTRA_SRC"

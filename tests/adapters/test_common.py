@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from ladev_lib.errors import ConfigError
 from ladev_lib.policies.adapters.common import (
     EMBODIMENTS,
     GOOGLE_ROBOT_CONTROL_MODE,
@@ -38,9 +39,17 @@ def test_euler_composite_by_hand() -> None:
     np.testing.assert_allclose(euler_to_axis_angle(math.pi / 2, 0, math.pi / 2), [expected] * 3)
 
 
+def _rodrigues(rotvec: np.ndarray) -> np.ndarray:
+    angle = float(np.linalg.norm(rotvec))
+    if angle < 1e-12:
+        return np.eye(3)
+    kx, ky, kz = rotvec / angle
+    k = np.array([[0, -kz, ky], [kz, 0, -kx], [-ky, kx, 0]])
+    return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * (k @ k)
+
+
 def test_euler_matches_the_rotation_matrix_convention() -> None:
     """R = Rz(yaw) Ry(pitch) Rx(roll) (static x, y, z), checked on the matrices."""
-    scipy_rotation = pytest.importorskip("scipy.spatial.transform").Rotation
     rng = np.random.default_rng(0)
     for r, p, y in rng.uniform(-1.2, 1.2, size=(20, 3)):
         rotvec = euler_to_axis_angle(r, p, y)
@@ -48,7 +57,7 @@ def test_euler_matches_the_rotation_matrix_convention() -> None:
         rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
         ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
         rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-        np.testing.assert_allclose(scipy_rotation.from_rotvec(rotvec).as_matrix(), rz @ ry @ rx, atol=1e-9)
+        np.testing.assert_allclose(_rodrigues(rotvec), rz @ ry @ rx, atol=1e-9)
         assert np.linalg.norm(rotvec) <= math.pi + 1e-9
 
 
@@ -158,5 +167,17 @@ def test_embodiments_follow_simplerenv() -> None:
     assert widowx.episode_steps_for("put_on") == 60 and widowx.episode_steps_for("put_in") == 120
     assert EMBODIMENTS["google_robot"].dataset_key == "fractal20220817_data"
     assert EMBODIMENTS["widowx"].dataset_key == "bridge_dataset"
-    with pytest.raises(ValueError, match="google_robot"):
+    with pytest.raises(ConfigError, match="google_robot"):
         embodiment("panda")
+
+
+def test_embodiment_overrides_apply_to_the_chosen_robot_only() -> None:
+    overrides = {
+        "widowx": {"camera": "cam2", "episode_steps": {"put_on": 70}, "control_freq_hz": 10},
+        "google_robot": {"camera": "not used here"},
+    }
+    emb = embodiment("widowx", overrides)
+    assert emb.camera == "cam2" and emb.episode_steps == {"put_on": 70} and emb.control_freq_hz == 10.0
+    assert emb.control_mode == WIDOWX_CONTROL_MODE  # untouched settings keep SimplerEnv's values
+    with pytest.raises(ConfigError, match="unknown setting"):
+        embodiment("widowx", {"widowx": {"fps": 3}})

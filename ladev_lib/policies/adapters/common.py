@@ -15,14 +15,16 @@ as an axis-angle vector (axis * angle). The gripper entry depends on the robot:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
+from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import PolicyInfo
 
 GOOGLE_ROBOT_CONTROL_MODE = (
@@ -86,22 +88,46 @@ EMBODIMENTS: dict[str, Embodiment] = {
 }
 
 
-def embodiment(robot: str) -> Embodiment:
-    """The embodiment named ``robot``; a clear error lists the supported ones."""
+OVERRIDABLE = ("control_mode", "camera", "image_size", "control_freq_hz", "episode_steps")
+
+
+def embodiment(
+    robot: str, overrides: Mapping[str, Mapping[str, Any]] | None = None
+) -> Embodiment:
+    """SimplerEnv's settings for ``robot``, with ``overrides[robot]`` applied.
+
+    ``overrides`` is the ``embodiments`` entry of a policy config: per robot,
+    any of control_mode, camera, image_size, control_freq_hz, episode_steps
+    (task -> steps). Settings for other robots are ignored, so one config can
+    name both robots and be switched with ``robot=...``.
+    """
     try:
-        return EMBODIMENTS[robot]
+        base = EMBODIMENTS[robot]
     except KeyError:
-        raise ValueError(
+        raise ConfigError(
             f"VLA adapters support robots {sorted(EMBODIMENTS)}, not {robot!r}"
         ) from None
+    changes = dict((overrides or {}).get(robot) or {})
+    unknown = sorted(set(changes) - set(OVERRIDABLE))
+    if unknown:
+        raise ConfigError(
+            f"embodiments.{robot}: unknown setting(s) {unknown}; allowed: {list(OVERRIDABLE)}"
+        )
+    if "image_size" in changes:
+        changes["image_size"] = tuple(int(v) for v in changes["image_size"])
+    if "episode_steps" in changes:
+        changes["episode_steps"] = {str(k): int(v) for k, v in changes["episode_steps"].items()}
+    if "control_freq_hz" in changes:
+        changes["control_freq_hz"] = float(changes["control_freq_hz"])
+    return dataclasses.replace(base, **changes)
 
 
-def policy_info(name: str, emb: Embodiment, control_mode: str | None = None) -> PolicyInfo:
+def policy_info(name: str, emb: Embodiment) -> PolicyInfo:
     """The :class:`PolicyInfo` of a VLA adapter driving ``emb``."""
     return PolicyInfo(
         name=name,
         robots=(emb.robot,),
-        control_mode=control_mode or emb.control_mode,
+        control_mode=emb.control_mode,
         image_size=emb.image_size,
         privileged=False,
         control_freq_hz=emb.control_freq_hz,

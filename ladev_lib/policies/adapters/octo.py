@@ -156,15 +156,19 @@ class OctoPolicy(Policy):
         seed: int = 0,
         action_scale: float = 1.0,
         device: str | None = None,
-        control_mode: str | None = None,
+        embodiments: dict[str, dict[str, Any]] | None = None,
         name: str = "octo",
         model: Any = None,
     ) -> None:
-        import jax
+        try:
+            import jax
+        except ImportError as exc:
+            raise MissingExtraError("policy 'octo'", "octo", exc) from exc
 
         self._jax = jax
-        self.emb = embodiment(robot)
-        self.info = policy_info(name, self.emb, control_mode)
+        # embodiments: per-robot overrides of SimplerEnv's settings (conf/policy/*.yaml).
+        self.emb = embodiment(robot, embodiments)
+        self.info = policy_info(name, self.emb)
         self.window = window
         self.action_horizon = action_horizon
         self.image_size = image_size
@@ -189,6 +193,7 @@ class OctoPolicy(Policy):
         self.post = EulerOpenGripperPostprocessor(self.emb, action_scale)
         self._history: deque[np.ndarray] = deque(maxlen=window)
         self._task: Any = None
+        self.last_raw_action = np.zeros(7)
         self._rng: Any = None
 
     def _fresh_rng(self) -> Any:
@@ -225,6 +230,7 @@ class OctoPolicy(Policy):
         chunk = chunk[: self.action_horizon, :7]
         normalized = self.ensembler(chunk) if self.ensembler is not None else chunk[0]
         raw = unnormalize_gaussian(normalized, self.action_stats)
+        self.last_raw_action = raw  # [xyz, roll-pitch-yaw, openness], for logs and plots
         return PolicyStep(action=self.post(raw), terminate=False)
 
     def close(self) -> None:

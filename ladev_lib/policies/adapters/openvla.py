@@ -29,6 +29,11 @@ from typing import Any
 
 import numpy as np
 
+# An ImportError here reaches the user through the policy registry, which
+# names the extra to install.
+import torch  # noqa: E402  (after the pure imports on purpose: the heavy one last)
+import transformers  # noqa: E402
+
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.adapters.common import (
     EulerOpenGripperPostprocessor,
@@ -37,11 +42,6 @@ from ladev_lib.policies.adapters.common import (
     require_image,
 )
 from ladev_lib.policies.base import Observation, Policy, PolicyStep
-
-# An ImportError here reaches the user through the policy registry, which
-# names the extra to install.
-import torch  # noqa: E402  (after the pure imports on purpose: the heavy one last)
-import transformers  # noqa: E402
 
 PROMPT_TEMPLATE = "In: What action should the robot take to {instruction}?\nOut:"
 UNNORM_KEYS = {"google_robot": "fractal20220817_data", "widowx": "bridge_orig"}
@@ -80,11 +80,12 @@ class OpenVLAPolicy(Policy):
         image_size: tuple[int, int] = (224, 224),
         action_scale: float = 1.0,
         local_files_only: bool | None = None,
-        control_mode: str | None = None,
+        embodiments: dict[str, dict[str, Any]] | None = None,
         name: str = "openvla",
     ) -> None:
-        self.emb = embodiment(robot)
-        self.info = policy_info(name, self.emb, control_mode)
+        # embodiments: per-robot overrides of SimplerEnv's settings (conf/policy/*.yaml).
+        self.emb = embodiment(robot, embodiments)
+        self.info = policy_info(name, self.emb)
         if dtype not in DTYPES:
             raise ConfigError(f"openvla dtype must be one of {sorted(DTYPES)}, got {dtype!r}")
         if "{instruction}" not in prompt_template:
@@ -117,6 +118,7 @@ class OpenVLAPolicy(Policy):
             )
         self.post = EulerOpenGripperPostprocessor(self.emb, action_scale)
         self._instruction: str | None = None
+        self.last_raw_action = np.zeros(7)
 
     def prompt(self, instruction: str) -> str:
         return self.prompt_template.format(instruction=instruction.strip().lower())
@@ -141,4 +143,5 @@ class OpenVLAPolicy(Policy):
         if self._instruction is None:
             raise RuntimeError("call reset(instruction) before step()")
         raw = self.predict_raw(require_image(obs.image, "OpenVLA"))
+        self.last_raw_action = raw  # [xyz, roll-pitch-yaw, openness], for logs and plots
         return PolicyStep(action=self.post(raw), terminate=False)

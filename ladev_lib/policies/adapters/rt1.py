@@ -33,6 +33,13 @@ from typing import Any
 
 import numpy as np
 
+# An ImportError here reaches the user through the policy registry, which
+# names the extra to install.
+import tensorflow as tf
+from tf_agents.policies import py_tf_eager_policy
+from tf_agents.specs import tensor_spec
+from tf_agents.trajectories import time_step as ts
+
 from ladev_lib.errors import ConfigError, MissingExtraError
 from ladev_lib.policies.adapters.common import (
     embodiment,
@@ -41,13 +48,6 @@ from ladev_lib.policies.adapters.common import (
     require_image,
 )
 from ladev_lib.policies.base import Observation, Policy, PolicyStep
-
-# An ImportError here reaches the user through the policy registry, which
-# names the extra to install.
-import tensorflow as tf
-from tf_agents.policies import py_tf_eager_policy
-from tf_agents.specs import tensor_spec
-from tf_agents.trajectories import time_step as ts
 
 EMBEDDING_DIM = 512
 
@@ -92,11 +92,12 @@ class RT1Policy(Policy):
         image_height: int = 256,
         action_scale: float = 1.0,
         device: str | None = None,
-        control_mode: str | None = None,
+        embodiments: dict[str, dict[str, Any]] | None = None,
         name: str = "rt1",
     ) -> None:
-        self.emb = embodiment(robot)
-        self.info = policy_info(name, self.emb, control_mode)
+        # embodiments: per-robot overrides of SimplerEnv's settings (conf/policy/*.yaml).
+        self.emb = embodiment(robot, embodiments)
+        self.info = policy_info(name, self.emb)
         self.image_width, self.image_height = image_width, image_height
         self.action_scale = action_scale
         # TensorFlow device string ("/GPU:0", "/CPU:0"); None lets TF place ops.
@@ -112,6 +113,7 @@ class RT1Policy(Policy):
         self._policy_state: Any = None
         self._embedding: Any = None
         self._instruction: str | None = None
+        self.last_raw_action: dict[str, np.ndarray] = {}
         self._new_episode_state()
         # Trace the graph once now rather than inside the first episode step.
         self._run(self._observation)
@@ -153,7 +155,9 @@ class RT1Policy(Policy):
         policy_step = self._run(self._observation)
         self._policy_state = policy_step.state
         raw = {k: np.asarray(v) for k, v in policy_step.action.items()}
-        return PolicyStep(action=self.postprocess(raw), terminate=bool(raw["terminate_episode"][0] > 0))
+        self.last_raw_action = raw  # the model's own output, for logs and plots
+        terminate = bool(raw["terminate_episode"][0] > 0)  # one-hot, index 0 = stop
+        return PolicyStep(action=self.postprocess(raw), terminate=terminate)
 
     def postprocess(self, raw: dict[str, np.ndarray]) -> np.ndarray:
         """RT-1's action dict -> the controller's 7-vector, per embodiment."""
