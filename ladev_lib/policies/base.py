@@ -40,7 +40,7 @@ class PolicyInfo:
     """Episode length it is evaluated with; None: the task's default."""
     camera: str | None = None
     """Name of the camera it was trained with (e.g. SimplerEnv's "overhead_camera"); None: any."""
-    max_episode_steps_by_task: Mapping[str, int] = field(default_factory=dict)
+    max_episode_steps_by_task: Mapping[str, int] = field(default_factory=dict, hash=False)
     """Per-task episode lengths (task name -> steps) overriding ``max_episode_steps``."""
 
     def episode_steps_for(self, task: str) -> int | None:

@@ -29,7 +29,8 @@ from typing import Any
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
-from websockets.exceptions import ConnectionClosed, InvalidStatus, InvalidURI
+from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus, InvalidURI
+from websockets.protocol import State
 from websockets.sync.client import ClientConnection, connect
 
 from ladev_lib.errors import ConfigError, LadevError
@@ -40,6 +41,10 @@ from ladev_lib.serving.protocol import SERVER_KIND, WireKeys, get_path, info_fro
 
 class RemotePolicyError(LadevError, RuntimeError):
     """The policy server could not be reached or did not answer properly."""
+
+
+class ConnectionLostError(RemotePolicyError):
+    """The connection closed while a request was in flight (the server died or stopped)."""
 
 
 class RemotePolicyConfig(BaseModel):
@@ -140,6 +145,11 @@ class RemotePolicy(Policy):
                 raise RemotePolicyError(
                     f"policy server at {cfg.url} refused the connection: HTTP {status} {body}"
                 ) from exc
+            except InvalidHandshake as exc:
+                raise RemotePolicyError(
+                    f"{cfg.url} did not complete a websocket handshake ({exc}); "
+                    "is it a policy server (ladev serve-policy / openpi)?"
+                ) from exc
             except (OSError, TimeoutError) as exc:
                 last_error = exc
                 if time.monotonic() >= deadline:
@@ -206,7 +216,7 @@ class RemotePolicy(Policy):
             ) from exc
         except ConnectionClosed as exc:
             self._ws = None
-            raise RemotePolicyError(
+            raise ConnectionLostError(
                 f"connection to the policy server at {url} was lost while waiting for {what} "
                 f"(close code {exc.rcvd.code if exc.rcvd else 'none'}: the server died or "
                 "was stopped)"
@@ -221,6 +231,16 @@ class RemotePolicy(Policy):
             raise RemotePolicyError(f"policy server at {url} sent an invalid message: {exc}") from exc
 
     def _request(self, message: dict[str, Any]) -> dict[str, Any]:
+        try:
+            return self._send_and_receive(message)
+        except ConnectionLostError:
+            if not self._new_episode:
+                raise
+        # Lost before the episode's first reply: the server holds no state of this
+        # episode yet, so reconnecting and asking again is safe.
+        return self._send_and_receive(message)
+
+    def _send_and_receive(self, message: dict[str, Any]) -> dict[str, Any]:
         if self._ws is None:
             self._connect()
         assert self._ws is not None
@@ -228,7 +248,7 @@ class RemotePolicy(Policy):
             self._ws.send(packb(message))
         except ConnectionClosed as exc:
             self._ws = None
-            raise RemotePolicyError(
+            raise ConnectionLostError(
                 f"connection to the policy server at {self.config.url} was lost mid-episode "
                 "(the server died or was stopped)"
             ) from exc
@@ -243,7 +263,9 @@ class RemotePolicy(Policy):
         self._instruction = instruction
         self._new_episode = True
         self._chunk.clear()
-        if self._ws is None:  # lost in an earlier episode: reconnect now
+        if self._ws is not None and self._ws.protocol.state is not State.OPEN:
+            self._ws = None  # the server went away between episodes
+        if self._ws is None:
             self._connect()
 
     def _observation_message(self, obs: Observation) -> dict[str, Any]:

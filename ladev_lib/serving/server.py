@@ -158,9 +158,11 @@ class PolicyServer:
             self._active -= 1
 
     async def _fail(self, ws: ServerConnection, text: str, code: CloseCode) -> None:
+        # A close reason may hold at most 123 bytes: the error's last line, cut.
+        reason = text.strip().splitlines()[-1].encode()[:120].decode("utf-8", "ignore")
         with contextlib.suppress(ConnectionClosed):
             await ws.send(text)
-            await ws.close(code=code, reason=text.strip().splitlines()[-1][:120])
+            await ws.close(code=code, reason=reason)
 
     def _infer(self, session: _Session, request: dict[str, Any]) -> dict[str, Any]:
         keys = self.keys

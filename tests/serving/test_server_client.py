@@ -120,6 +120,12 @@ def test_server_killed_mid_episode_then_restarted(server_process) -> None:
         assert restarted.port == server.port
         policy.reset("move the apple near the sponge")
         assert policy.step(_obs()).action[0] == 0
+        # Killed between episodes: the next reset notices and reconnects, no error.
+        restarted.kill()
+        again = server_process("--port", str(server.port))
+        policy.reset("move the apple near the sponge")
+        assert policy.step(_obs()).action[0] == 0
+        assert again.proc.poll() is None
     finally:
         policy.close()
 
@@ -280,3 +286,16 @@ def test_resize_with_pad_keeps_aspect_ratio() -> None:
     assert out.shape == (224, 224, 3)
     assert out[:27].max() == 0 and out[-27:].max() == 0  # 640x480 -> 224x168, 28 rows pad
     assert out[112, 112].tolist() == [255, 255, 255]
+
+
+def test_plain_http_server_is_not_a_policy_server() -> None:
+    import http.server
+
+    httpd = http.server.HTTPServer(("127.0.0.1", 0), http.server.SimpleHTTPRequestHandler)
+    thread = threading.Thread(target=httpd.serve_forever, daemon=True)
+    thread.start()
+    try:
+        with pytest.raises(RemotePolicyError, match="HTTP|handshake"):
+            RemotePolicy(url=f"ws://127.0.0.1:{httpd.server_port}", wait_for_server_s=1)
+    finally:
+        httpd.shutdown()
