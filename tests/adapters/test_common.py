@@ -69,6 +69,9 @@ def test_rescale_with_bounds_rt1x_bridge() -> None:
 def test_unnormalize_gaussian_honours_the_mask() -> None:
     stats = {"mean": [1.0, 2.0, 0.0], "std": [0.5, 2.0, 3.0], "mask": [True, False, True]}
     np.testing.assert_allclose(unnormalize_gaussian(np.array([2.0, 3.0, -1.0]), stats), [2.0, 3.0, -3.0])
+    np.testing.assert_allclose(
+        unnormalize_gaussian(np.array([2.0, 3.0, -1.0]), stats, use_mask=False), [2.0, 8.0, -3.0]
+    )
     no_mask = {"mean": [1.0, 2.0], "std": [0.5, 2.0]}
     np.testing.assert_allclose(unnormalize_gaussian(np.array([2.0, 3.0]), no_mask), [2.0, 8.0])
 

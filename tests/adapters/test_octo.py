@@ -68,8 +68,9 @@ def test_a_fresh_key_each_step_and_the_same_keys_each_episode() -> None:
     np.testing.assert_allclose(episodes[0], episodes[1])
 
 
-def test_ensembled_unnormalised_and_converted_by_hand() -> None:
-    policy = _policy(robot="widowx")
+@pytest.mark.parametrize("use_action_mask", [False, True])
+def test_ensembled_unnormalised_and_converted_by_hand(use_action_mask: bool) -> None:
+    policy = _policy(robot="widowx", use_action_mask=use_action_mask)
     policy.reset("put eggplant into yellow basket")
     frame = Observation(image=load_frame("widowx"))
     model, stats = policy.model, STATS["bridge_dataset"]["action"]
@@ -87,7 +88,8 @@ def test_ensembled_unnormalised_and_converted_by_hand() -> None:
         )[0]
         normalized = ensembler(chunk)
         raw = normalized * np.array(stats["std"]) + np.array(stats["mean"])
-        raw[6] = normalized[6]  # mask: the gripper is not normalised
+        if use_action_mask:
+            raw[6] = normalized[6]  # Octo's convention: the masked gripper stays as predicted
         np.testing.assert_allclose(step.action[:3], raw[:3], rtol=1e-5, atol=1e-7)
         np.testing.assert_allclose(step.action[3:6], euler_to_axis_angle(*raw[3:6]), rtol=1e-5, atol=1e-7)
         assert step.action[6] == (1.0 if raw[6] > 0.5 else -1.0)

@@ -115,3 +115,17 @@ def test_area_resize_averages_blocks() -> None:
 def test_missing_checkpoint_is_an_error(tmp_path: Path) -> None:
     with pytest.raises(OSError):
         _policy(str(tmp_path / "nope"), "widowx", local_files_only=True)
+
+
+@pytest.mark.manual
+def test_gpu_episode(checkpoint: str) -> None:
+    """One short episode on a GPU through the same adapter code (LADEV_MANUAL=1, CUDA torch)."""
+    if not torch.cuda.is_available():
+        pytest.skip("no CUDA device (TORCH_SPEC must name a CUDA build of torch)")
+    policy = make_policy("openvla", checkpoint=checkpoint, robot="google_robot", device="cuda:0",
+                         dtype="bfloat16", attn_implementation="sdpa")
+    assert next(policy.model.parameters()).device.type == "cuda"
+    policy.reset("pick up the coke can")
+    frame = Observation(image=load_frame("google_robot"))
+    actions = [policy.step(frame).action for _ in range(10)]
+    assert all(a.shape == (7,) and np.all(np.isfinite(a)) for a in actions)

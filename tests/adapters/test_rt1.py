@@ -128,3 +128,16 @@ def test_missing_checkpoint_and_encoder_are_config_errors(encoder: str, tmp_path
         make_policy("rt1", checkpoint=str(tmp_path), sentence_encoder=encoder)
     with pytest.raises(ConfigError, match="Universal Sentence Encoder"):
         make_policy("rt1", checkpoint=str(tmp_path), sentence_encoder=str(tmp_path / "nope"))
+
+
+@pytest.mark.manual
+def test_gpu_episode(checkpoint: str, encoder: str) -> None:
+    """One short episode on a GPU through the same adapter code (LADEV_MANUAL=1, TF_SPEC with CUDA)."""
+    if not tf.config.list_physical_devices("GPU"):
+        pytest.skip("no GPU visible to TensorFlow (TF_SPEC='tensorflow[and-cuda]==2.15.1')")
+    policy = make_policy("rt1", checkpoint=checkpoint, sentence_encoder=encoder, device="/GPU:0")
+    policy.reset("pick up the coke can")
+    frame = Observation(image=load_frame("google_robot"))
+    steps = [policy.step(frame) for _ in range(10)]
+    assert [s.terminate for s in steps[:3]] == [False, False, True]
+    assert all(np.all(np.isfinite(s.action)) for s in steps)

@@ -190,14 +190,19 @@ def _mask(stats: Mapping[str, Sequence[float] | np.ndarray], dim: int) -> np.nda
 
 
 def unnormalize_gaussian(
-    action: np.ndarray, stats: Mapping[str, Sequence[float] | np.ndarray]
+    action: np.ndarray, stats: Mapping[str, Sequence[float] | np.ndarray], use_mask: bool = True
 ) -> np.ndarray:
-    """``action * std + mean`` where ``stats["mask"]`` (default: all dims) is true (Octo)."""
+    """``action * std + mean`` (Octo), where ``stats["mask"]`` is true if ``use_mask``.
+
+    Octo's own ``sample_actions`` honours the mask (the gripper is not
+    normalised in training); SimplerEnv's Octo policy unnormalises all dims.
+    """
     a = np.asarray(action, dtype=np.float64)
     d = a.shape[-1]
     mean = np.asarray(stats["mean"], dtype=np.float64)[:d]
     std = np.asarray(stats["std"], dtype=np.float64)[:d]
-    return np.where(_mask(stats, d), a * std + mean, a)
+    mask = _mask(stats, d) if use_mask else np.ones(d, dtype=bool)
+    return np.where(mask, a * std + mean, a)
 
 
 def unnormalize_bounds(

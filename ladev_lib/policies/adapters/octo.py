@@ -17,7 +17,8 @@ Per step (SimplerEnv's ``octo_model.py``): the image is resized to 256x256
 (Lanczos, antialiased), kept in a two-frame history, and the model samples
 a chunk of 4 normalised actions; the chunks are temporally ensembled, then
 unnormalised with the mean/std of ``fractal20220817_data`` (Google robot)
-or ``bridge_dataset`` (WidowX). Rotation roll-pitch-yaw becomes axis-angle;
+or ``bridge_dataset`` (WidowX), every dimension as SimplerEnv does
+(``use_action_mask=True``: Octo's own convention, skipping masked dims). Rotation roll-pitch-yaw becomes axis-angle;
 the gripper openness becomes a relative command held for 15 steps (Google
 robot) or a binary open/close target (WidowX). Octo has no stop signal.
 
@@ -154,6 +155,7 @@ class OctoPolicy(Policy):
         ensemble_temperature: float = 0.0,
         image_size: int = 256,
         seed: int = 0,
+        use_action_mask: bool = False,
         action_scale: float = 1.0,
         device: str | None = None,
         embodiments: dict[str, dict[str, Any]] | None = None,
@@ -189,6 +191,9 @@ class OctoPolicy(Policy):
                 f"it has: {', '.join(sorted(stats)) or 'none'} (set dataset_key)"
             )
         self.action_stats = stats[self.dataset_key]["action"]
+        # False: SimplerEnv's choice (every dim unnormalised, the gripper too);
+        # True: Octo's own (dims whose statistics mask is false left as predicted).
+        self.use_action_mask = use_action_mask
         self.ensembler = ActionEnsembler(action_horizon, ensemble_temperature) if ensemble else None
         self.post = EulerOpenGripperPostprocessor(self.emb, action_scale)
         self._history: deque[np.ndarray] = deque(maxlen=window)
@@ -229,7 +234,7 @@ class OctoPolicy(Policy):
             )
         chunk = chunk[: self.action_horizon, :7]
         normalized = self.ensembler(chunk) if self.ensembler is not None else chunk[0]
-        raw = unnormalize_gaussian(normalized, self.action_stats)
+        raw = unnormalize_gaussian(normalized, self.action_stats, self.use_action_mask)
         self.last_raw_action = raw  # [xyz, roll-pitch-yaw, openness], for logs and plots
         return PolicyStep(action=self.post(raw), terminate=False)
 
