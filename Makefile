@@ -51,3 +51,6 @@ bench: setup           ## benchmarks that print figures (not timed tests)
 
 clean-data:            ## remove generated data and reports (keeps the caches)
 	rm -rf data/*.parquet data/episodes data/media reports/*
+
+# VLA adapter environments: make test-adapters (see mk/adapters.mk)
+include mk/adapters.mk
