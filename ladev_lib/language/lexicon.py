@@ -23,11 +23,11 @@ from collections.abc import Iterable
 # are in MANNER_VERBS: a negated manner verb without a destination is a
 # constraint on how to do the task, not a negation of the task.
 
-_PICK = "pick lift grab grasp take get raise hoist seize snatch collect pluck scoop hold fetch retrieve snag nab grip clutch"
+_PICK = "pick lift grab grasp take get raise hoist seize snatch collect pluck scoop hold fetch retrieve snag nab grip clutch obtain acquire"
 _PLACE = (
     "put place set lay rest drop lower position move bring slide push shove nudge shift drag carry "
     "transfer relocate reposition stack stick pop toss throw chuck insert deposit tuck stash load "
-    "dump sit stand park leave roll go end belong plop slip return"
+    "dump sit stand park leave roll go end belong plop slip return transport"
 )
 _OTHER = (
     "knock tip topple open close shake squeeze eat peel point touch tap poke hit kick spin rotate "
@@ -124,23 +124,24 @@ PICK_PLACES_WITH_STATIVE = frozenset({"get"})
 # Verbs that move the *robot*, not an object, when the clause has no object.
 SELF_MOTION = frozenset({"go", "head", "reach", "approach", "move", "come"})
 
-# Multi-word verbs rewritten to one verb before tagging.
-PHRASAL_VERBS: dict[tuple[str, ...], tuple[str, ...]] = {
-    ("take", "hold", "of"): ("grasp",),
-    ("get", "hold", "of"): ("grasp",),
-    ("grab", "hold", "of"): ("grasp",),
-    ("catch", "hold", "of"): ("grasp",),
-    ("lay", "hold", "of"): ("grasp",),
-    ("let", "go", "of"): ("release",),
-    ("let", "go"): ("release",),
-    ("let", "it", "go"): ("release",),
-    ("knock", "over"): ("knock",),
-    ("look", "at"): ("look",),
-    ("look", "for"): ("look",),
-    ("reach", "for"): ("reach",),
-    ("end", "up"): ("end",),
-    ("ends", "up"): ("end",),
-    ("hand", "over"): ("hand",),
+# Multi-word verbs, matched on any inflection of their first word ("taking hold
+# of" too): the words after the verb are dropped, and the verb is replaced by
+# the given word, or kept (None).
+PHRASAL_VERBS: dict[tuple[str, ...], str | None] = {
+    ("take", "hold", "of"): None,
+    ("get", "hold", "of"): None,
+    ("grab", "hold", "of"): None,
+    ("catch", "hold", "of"): "grasp",
+    ("lay", "hold", "of"): "grasp",
+    ("let", "go", "of"): "release",
+    ("let", "go"): "release",
+    ("let", "it", "go"): "release",
+    ("knock", "over"): None,
+    ("look", "at"): None,
+    ("look", "for"): None,
+    ("reach", "for"): None,
+    ("end", "up"): None,
+    ("hand", "over"): None,
 }
 
 # -- relations -----------------------------------------------------------------
@@ -158,7 +159,8 @@ _add_relations(
     "near",
     "near,nearby,near to,nearer to,next to,right next to,close to,closer to,close by,beside,besides,"
     "by,by the side of,alongside,adjacent to,up to,over to,over by,right by,toward,towards,to,"
-    "in the vicinity of,in proximity to,in the proximity of,at the side of,next door to",
+    "in the vicinity of,in proximity to,in the proximity of,at the side of,next door to,"
+    "in the direction of",
 )
 _add_relations("on", "on,onto,on to,on top of,on the top of,upon,atop,over onto")
 _add_relations("in", "in,into,in to,inside,inside of,within,down into")

@@ -21,11 +21,14 @@ relations outside the four tasks all give a ``reason`` instead of an exception.
 
 from __future__ import annotations
 
+import functools
+import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from ladev_lib.catalog import Catalog, load_catalog
+from ladev_lib.catalog.catalog import normalize_name
 from ladev_lib.language import lexicon as lx
 from ladev_lib.language.mentions import NameIndex, name_index
 from ladev_lib.language.tokens import Token, is_sentence_end, tag_tokens
@@ -595,11 +598,33 @@ class InstructionParser:
         return _Composer(text, clauses).compose()
 
     def canonical_text(self, text: str) -> str:
-        """The instruction with every object name replaced by its display name."""
-        out = []
+        """The instruction with every object name replaced by its display name.
+
+        Only the names change; the rest of the text is kept as written, so an
+        instruction that already uses display names comes back unchanged.
+        """
+        out, pos = [], 0
         for tok in tag_tokens(text, self.index):
-            out.append(self.index.display_name(tok.object_id) if tok.kind == "OBJ" and tok.object_id else tok.text)
-        return " ".join(out)
+            if tok.kind != "OBJ" or tok.object_id is None:
+                continue
+            display = self.index.display_name(tok.object_id)
+            if normalize_name(display) == tok.text:
+                continue
+            found = _surface_pattern(tok.text).search(text, pos)
+            if found is None:
+                continue  # the name's surface form could not be located; leave it
+            out.append(text[pos : found.start()])
+            out.append(display)
+            pos = found.end()
+        out.append(text[pos:])
+        return "".join(out)
+
+
+@functools.lru_cache(maxsize=1024)
+def _surface_pattern(normalized: str) -> re.Pattern[str]:
+    """Matches a normalised name as written: any case, hyphens or spaces, apostrophes."""
+    words = ["'?".join(re.escape(ch) for ch in word) for word in normalized.split()]
+    return re.compile(r"(?<![a-z0-9])" + r"[\s\-_/]+".join(words) + r"(?![a-z0-9])", re.IGNORECASE)
 
 
 _DEFAULT: dict[int, InstructionParser] = {}

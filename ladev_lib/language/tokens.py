@@ -69,6 +69,23 @@ def words_of(text: str) -> list[str]:
     return t.split()
 
 
+def _rewrite_phrasal(words: list[str]) -> list[str]:
+    out: list[str] = []
+    i = 0
+    while i < len(words):
+        w = words[i]
+        lemma = lx.VERBS[w][1] if w in lx.VERBS else w
+        for phrase, replacement in lx.PHRASAL_VERBS.items():
+            if phrase[0] == lemma and tuple(words[i + 1 : i + len(phrase)]) == phrase[1:]:
+                out.append(replacement or w)
+                i += len(phrase)
+                break
+        else:
+            out.append(w)
+            i += 1
+    return out
+
+
 def _rewrite(words: list[str], table: dict[tuple[str, ...], tuple[str, ...]]) -> list[str]:
     out: list[str] = []
     i = 0
@@ -121,7 +138,7 @@ def _match_phrase(
 
 def tag_tokens(text: str, index: NameIndex) -> list[Token]:
     """The tagged tokens of an instruction."""
-    words = _rewrite(_rewrite(words_of(text), _DROP), lx.PHRASAL_VERBS)
+    words = _rewrite_phrasal(_rewrite(words_of(text), _DROP))
     tokens: list[Token] = []
     i = 0
     while i < len(words):

@@ -1,0 +1,50 @@
+"""Precision / recall of "valid" on the labelled paraphrase pairs: similarity alone vs LADEV.
+
+    PYTHONPATH=. python benchmarks/eval_paraphrase_validator.py [--threshold 0.45] [-o reports/paraphrase_validator.md]
+
+Prints the table and writes it as Markdown. The labelled sets are
+tests/data/paraphrase_pairs.csv (written before the parser) and
+tests/data/paraphrase_pairs_holdout.csv (written after its first version).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from pathlib import Path
+
+os.environ.setdefault("HF_HUB_OFFLINE", "1")
+
+from ladev_lib.language.embeddings import load_embedder  # noqa: E402
+from ladev_lib.language.evaluation import (  # noqa: E402
+    evaluate_validator,
+    load_labelled_pairs,
+    render_markdown,
+)
+from ladev_lib.language.validator import DEFAULT_THRESHOLD, ParaphraseValidator  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+SETS = {
+    "labelled set (tests/data/paraphrase_pairs.csv)": ROOT / "tests/data/paraphrase_pairs.csv",
+    "held-out set (tests/data/paraphrase_pairs_holdout.csv)": ROOT / "tests/data/paraphrase_pairs_holdout.csv",
+}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--threshold", type=float, default=DEFAULT_THRESHOLD)
+    ap.add_argument("--model", default="all-MiniLM-L6-v2")
+    ap.add_argument("-o", "--output", default=str(ROOT / "reports/paraphrase_validator.md"))
+    args = ap.parse_args()
+    validator = ParaphraseValidator(load_embedder(args.model), threshold=args.threshold)
+    evaluations = {name: evaluate_validator(load_labelled_pairs(path), validator) for name, path in SETS.items()}
+    text = render_markdown(evaluations, validator, args.model)
+    print(text)
+    out = Path(args.output)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(text, encoding="utf-8")
+    print(f"written: {out}")
+
+
+if __name__ == "__main__":
+    main()
