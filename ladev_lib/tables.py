@@ -103,8 +103,9 @@ class InstructionRow(TableRow):
     llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
     canonical_similarity: float | None = Field(
         default=None,
-        description="Cosine similarity with object names replaced by display names: the figure the "
-        "validator's threshold applies to (null for basic).",
+        description="Cosine similarity with object names replaced by display names, computed when "
+        "'similarity' is below the threshold (the better of the two must reach it); null otherwise "
+        "and for basic.",
     )
 
 

@@ -19,7 +19,14 @@ from ladev_lib.language.config import ParaphraseConfig
 from ladev_lib.language.pipeline import make_validator, paraphrase_scenes, scene_tasks
 from ladev_lib.llm.config import LLMConfig, make_client
 from ladev_lib.llm.prompts import load_prompts
-from ladev_lib.tables import CompiledSceneRow, InstructionRow, SceneDesignRow, read_table, rows_of, write_table
+from ladev_lib.tables import (
+    CompiledSceneRow,
+    InstructionRow,
+    SceneDesignRow,
+    read_table,
+    rows_of,
+    write_table,
+)
 
 
 def main(params_path: str = "params.yaml") -> int:

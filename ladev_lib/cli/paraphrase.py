@@ -34,8 +34,9 @@ def command(
     """Ask the configured LLM for K paraphrases of INSTRUCTION and validate each.
 
     Every candidate is printed with its similarity to the instruction (as
-    written, and with object names canonicalised: the gated figure), how it
-    reads back as (task, source, target), and the verdict with its reason.
+    written; and, when that is below the threshold, with object names
+    canonicalised), how it reads back as (task, source, target), and the
+    verdict with its reason.
     OVERRIDES are Hydra overrides, e.g. llm=openai paraphrase.similarity_threshold=0.6.
     """
     setup = language_setup(overrides, config_dir, cache_dir, threshold)
@@ -52,22 +53,23 @@ def command(
         for v in verdicts:
             click.echo(json.dumps({
                 "candidate": v.candidate, "similarity": round(v.similarity, 4),
-                "canonical_similarity": round(v.canonical_similarity, 4), "parse": v.parse.as_dict(),
+                "canonical_similarity": v.canonical_similarity, "parse": v.parse.as_dict(),
                 "valid": v.valid, "reason": v.reason,
             }))
         return
     backend = f"{setup.client.backend.name} ({setup.client.backend.model})"
     click.echo(f"original: {instruction!r} -> {reading(*original.roles)}"
                + (f"  [not understood: {original.reason}]" if original.reason else ""))
-    click.echo(f"{len(candidates)} candidates from {backend}; threshold {setup.validator.threshold:.2f} "
-               f"on canonical similarity; reader: {setup.validator.reader.name}")
+    click.echo(f"{len(candidates)} candidates from {backend}; similarity threshold "
+               f"{setup.validator.threshold:.2f}; reader: {setup.validator.reader.name}")
     if result.value.problem:
         click.echo(f"note from the paraphraser: {result.value.problem}")
     click.echo(f"{'#':>3}  {'verdict':7}  {'sim':>5}  {'canon':>5}  {'reads as':38}  candidate")
     for i, v in enumerate(verdicts, start=1):
         verdict = click.style("valid", fg="green") if v.valid else click.style("REJECT", fg="red")
         pad = " " * (7 - len("valid" if v.valid else "REJECT"))
-        click.echo(f"{i:>3}  {verdict}{pad}  {v.similarity:5.2f}  {v.canonical_similarity:5.2f}  "
+        canon = "" if v.canonical_similarity is None else f"{v.canonical_similarity:.2f}"
+        click.echo(f"{i:>3}  {verdict}{pad}  {v.similarity:5.2f}  {canon:>5}  "
                    f"{reading(*v.parse.roles):38}  {v.candidate}")
         if v.reason:
             click.echo(f"{'':>3}  {'':7}  {'':5}  {'':5}  -> {v.reason}")

@@ -51,10 +51,11 @@ def command(
     \b
     Output: every input column, then
       similarity            cosine similarity of the sentences as written
-      canonical_similarity  the same with object names replaced by display names (gated)
+      canonical_similarity  the same with object names replaced by display names, when
+                            similarity is below the threshold (empty otherwise)
       original_task / original_source / original_target   how the original reads
       parsed_task / parsed_source / parsed_target          how the candidate reads
-      similar               canonical_similarity >= threshold
+      similar               max(similarity, canonical_similarity) >= threshold
       same_structure        the candidate reads as the original's (task, source, target)
       valid                 similar and same_structure
       reason                why it is not valid (empty when valid)
@@ -84,11 +85,11 @@ def command(
     with open(output, "w", newline="", encoding="utf-8") as f:
         writer = csv.DictWriter(f, fieldnames=out_columns)
         writer.writeheader()
-        for row, v in zip(rows, verdicts):
+        for row, v in zip(rows, verdicts, strict=True):
             writer.writerow({
                 **row,
                 "similarity": f"{v.similarity:.4f}",
-                "canonical_similarity": f"{v.canonical_similarity:.4f}",
+                "canonical_similarity": "" if v.canonical_similarity is None else f"{v.canonical_similarity:.4f}",
                 "original_task": v.expected.task or "", "original_source": v.expected.source or "",
                 "original_target": v.expected.target or "",
                 "parsed_task": v.parse.task or "", "parsed_source": v.parse.source or "",

@@ -67,10 +67,10 @@ class Scores:
 
 
 def score(predicted: Sequence[bool], actual: Sequence[bool], threshold: float | None = None) -> Scores:
-    tp = sum(p and a for p, a in zip(predicted, actual))
-    fp = sum(p and not a for p, a in zip(predicted, actual))
-    fn = sum(a and not p for p, a in zip(predicted, actual))
-    tn = sum(not p and not a for p, a in zip(predicted, actual))
+    tp = sum(p and a for p, a in zip(predicted, actual, strict=True))
+    fp = sum(p and not a for p, a in zip(predicted, actual, strict=True))
+    fn = sum(a and not p for p, a in zip(predicted, actual, strict=True))
+    tn = sum(not p and not a for p, a in zip(predicted, actual, strict=True))
     return Scores(tp, fp, fn, tn, threshold)
 
 
@@ -102,7 +102,7 @@ class ValidatorEvaluation:
     """category -> (pairs, LADEV correct, best-F1 similarity threshold correct)."""
 
     def errors(self) -> list[tuple[LabelledPair, Verdict]]:
-        return [(p, v) for p, v in zip(self.pairs, self.verdicts) if v.valid != p.same]
+        return [(p, v) for p, v in zip(self.pairs, self.verdicts, strict=True) if v.valid != p.same]
 
 
 def evaluate_validator(
@@ -114,11 +114,12 @@ def evaluate_validator(
     sweep = threshold_sweep(raw, actual)
     sim_f1 = best_f1(sweep)
     sim_at_recall = best_precision_at_recall(sweep, min_recall)
-    canonical_f1 = best_f1(threshold_sweep([v.canonical_similarity for v in verdicts], actual))
+    canonical = validator.canonical_similarities([(p.original, p.candidate) for p in pairs])
+    canonical_f1 = best_f1(threshold_sweep(canonical.tolist(), actual))
     ladev = score([v.valid for v in verdicts], actual, validator.threshold)
     by_category: dict[str, tuple[int, int, int]] = {}
     assert sim_f1.threshold is not None
-    for p, v in zip(pairs, verdicts):
+    for p, v in zip(pairs, verdicts, strict=True):
         n, ok_ladev, ok_sim = by_category.get(p.category, (0, 0, 0))
         by_category[p.category] = (
             n + 1,
@@ -136,8 +137,8 @@ def render_markdown(
     lines = [
         "# Paraphrase validator: precision and recall of \"valid\"",
         "",
-        f"Embedding model: `{model}`; LADEV threshold {validator.threshold:.2f} on the canonical "
-        f"similarity; structure reader: {validator.reader.name}.",
+        f"Embedding model: `{model}`; LADEV threshold {validator.threshold:.2f} on the better of the "
+        f"similarity as written and with canonical object names; structure reader: {validator.reader.name}.",
         "Positive class: *valid* (the candidate keeps the original's meaning). Similarity-only rows "
         "use the threshold that is best **for that very set** (an optimistic baseline); "
         "the similarity is cosine similarity of the sentences as written, as in the paper.",

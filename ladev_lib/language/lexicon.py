@@ -38,8 +38,7 @@ _PREAMBLE = "find locate look spot identify see notice reach approach head use w
 _RELEASE = "release"
 
 MANNER_VERBS: frozenset[str] = frozenset(
-    "drop spill squeeze crush break damage knock bump hit touch hurt rush tip topple shake bang "
-    "dent scratch lose smash disturb move".split()
+    ["drop", "spill", "squeeze", "crush", "break", "damage", "knock", "bump", "hit", "touch", "hurt", "rush", "tip", "topple", "shake", "bang", "dent", "scratch", "lose", "smash", "disturb", "move"]
 )
 
 # Irregular forms (base -> extra forms). "left" is deliberately not a form of
@@ -74,8 +73,7 @@ _IRREGULAR: dict[str, tuple[str, ...]] = {
 }
 # One-syllable verbs whose final consonant doubles before -ing / -ed.
 _DOUBLING = frozenset(
-    "grab drop pop set put get sit snag nab drag slip tap stop plop flip hit stir grip cut spin "
-    "tip dump nab chop knock".split()
+    ["grab", "drop", "pop", "set", "put", "get", "sit", "snag", "nab", "drag", "slip", "tap", "stop", "plop", "flip", "hit", "stir", "grip", "cut", "spin", "tip", "dump", "nab", "chop", "knock"]
 ) - {"knock", "dump"}
 
 
@@ -183,23 +181,23 @@ PARTICLES = frozenset({"up", "down", "over", "back", "away", "out", "off", "arou
 REVERSE_PARTICLES = frozenset({"away", "out", "off", "aside"})
 
 # -- function words ------------------------------------------------------------
-DETERMINERS = frozenset("the a an that this these those your my our his her their its some any".split())
+DETERMINERS = frozenset(["the", "a", "an", "that", "this", "these", "those", "your", "my", "our", "his", "her", "their", "its", "some", "any"])
 PRONOUNS = frozenset({"it", "that", "this", "them"})
 """Words that stand for an object already mentioned ("pick it up")."""
 PLURAL_PRONOUNS = frozenset({"them", "these", "those"})
 RECIPIENTS = frozenset({"me", "us", "him", "her"})
 """After an action verb these make it a hand-over ("bring me the can")."""
 QUANTIFIERS = frozenset(
-    "all every each both two three four five six seven eight nine ten several many multiple".split()
+    ["all", "every", "each", "both", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "several", "many", "multiple"]
 )
 NEGATIONS = frozenset({"not", "never", "avoid", "avoiding", "refrain", "refraining", "no", "without", "nor"})
-COPULAS = frozenset("is are be being been was were am".split())
-AUXILIARIES = frozenset("do does did".split())
-REPETITION = frozenset("twice thrice repeatedly times".split())
+COPULAS = frozenset(["is", "are", "be", "being", "been", "was", "were", "am"])
+AUXILIARIES = frozenset(["do", "does", "did"])
+REPETITION = frozenset(["twice", "thrice", "repeatedly", "times"])
 """Words that ask for the task more than once."""
-MODALS = frozenset("can could would will shall should must might may".split())
+MODALS = frozenset(["can", "could", "would", "will", "shall", "should", "must", "might", "may"])
 DESIRE = frozenset(
-    "should must need needs want wants like ought supposed has have needed wanted would".split()
+    ["should", "must", "need", "needs", "want", "wants", "like", "ought", "supposed", "has", "have", "needed", "wanted", "would"]
 )
 """Words that turn a state ("the carrot is on the plate") into a goal ("... should be ...")."""
 
@@ -211,8 +209,7 @@ SEQUENCE = (
 )
 RESULT = (("so", "that"), ("such", "that"), ("so",), ("until",), ("till",), ("in", "order", "that"))
 SKIPPABLE = frozenset(
-    "please kindly just also now then carefully gently slowly quickly first simply immediately "
-    "really try to".split()
+    ["please", "kindly", "just", "also", "now", "then", "carefully", "gently", "slowly", "quickly", "first", "simply", "immediately", "really", "try", "to"]
 )
 """Words that may stand between a conjunction and the verb that starts a clause."""
 
@@ -233,10 +230,7 @@ NEGATION_NEUTRALIZERS: tuple[tuple[str, ...], ...] = (
 )
 
 LOCATION_NOUNS = frozenset(
-    "table tabletop counter countertop desk surface floor ground shelf workspace left right side "
-    "front back middle center centre corner edge top bottom spot area place there here gripper "
-    "hand hands arm claw fingers finger robot camera view you me us somewhere anywhere elsewhere "
-    "down way".split()
+    ["table", "tabletop", "counter", "countertop", "desk", "surface", "floor", "ground", "shelf", "workspace", "left", "right", "side", "front", "back", "middle", "center", "centre", "corner", "edge", "top", "bottom", "spot", "area", "place", "there", "here", "gripper", "hand", "hands", "arm", "claw", "fingers", "finger", "robot", "camera", "view", "you", "me", "us", "somewhere", "anywhere", "elsewhere", "down", "way"]
 )
 """Nouns that name a place or the robot, never a task object."""
 
@@ -263,22 +257,19 @@ HYPERNYMS: dict[str, tuple[str, ...]] = {
 """Generic nouns and the catalog groups they can stand for."""
 
 PART_NOUNS = frozenset(
-    "slice slices piece pieces peel juice seed seeds stem leaf label cap handle half bag bunch "
-    "pile stack wrapper box bottle can cans".split()
+    ["slice", "slices", "piece", "pieces", "peel", "juice", "seed", "seeds", "stem", "leaf", "label", "cap", "handle", "half", "bag", "bunch", "pile", "stack", "wrapper", "box", "bottle", "can", "cans"]
 )
 """Nouns after an object name that make the name a modifier ("the coke label")."""
 
 COLOR_WORDS = frozenset(
-    "red green blue yellow orange purple pink white black brown grey gray violet light dark".split()
+    ["red", "green", "blue", "yellow", "orange", "purple", "pink", "white", "black", "brown", "grey", "gray", "violet", "light", "dark"]
 )
-SIZE_WORDS = frozenset("small large big little mini tiny huge extra".split())
+SIZE_WORDS = frozenset(["small", "large", "big", "little", "mini", "tiny", "huge", "extra"])
 
-PERSONS = frozenset("you i we me us he she they him yourself".split())
+PERSONS = frozenset(["you", "i", "we", "me", "us", "he", "she", "they", "him", "yourself"])
 """Personal pronouns: never objects ("could you", "for me")."""
 ADVERBS = frozenset(
-    "again too also well please thanks thank kindly just now then here there right quick fast "
-    "asap soon ok okay hey yo hi hello sure maybe perhaps first next finally already still very "
-    "real really gonna up down away".split()
+    ["again", "too", "also", "well", "please", "thanks", "thank", "kindly", "just", "now", "then", "here", "there", "right", "quick", "fast", "asap", "soon", "ok", "okay", "hey", "yo", "hi", "hello", "sure", "maybe", "perhaps", "first", "next", "finally", "already", "still", "very", "real", "really", "gonna", "up", "down", "away"]
 )
 """Words that never belong to a noun phrase (besides any word ending in -ly)."""
 NOISE_PHRASES: tuple[tuple[str, ...], ...] = (

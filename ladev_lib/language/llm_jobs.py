@@ -155,7 +155,7 @@ class LLMReader:
     def read(
         self, texts: Sequence[str], scene_objects: Sequence[frozenset[str] | None]
     ) -> list[InstructionParse]:
-        return [self.read_one(t, s) for t, s in zip(texts, scene_objects)]
+        return [self.read_one(t, s) for t, s in zip(texts, scene_objects, strict=True)]
 
     def read_one(self, text: str, scene: frozenset[str] | None) -> InstructionParse:
         names = [self.index.display_name(o) for o in sorted(scene)] if scene else []

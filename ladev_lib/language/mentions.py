@@ -197,7 +197,7 @@ def _colors_of(obj: CatalogObject) -> set[str]:
         if _COLOR_ALIASES.get(w, w) in _PALETTE
     }
     r, g, b = obj.color
-    ranked = sorted(_PALETTE, key=lambda c: sum((x - y) ** 2 for x, y in zip((r, g, b), _PALETTE[c])))
+    ranked = sorted(_PALETTE, key=lambda c: sum((x - y) ** 2 for x, y in zip((r, g, b), _PALETTE[c], strict=True)))
     found.update(ranked[:2])
     return found
 

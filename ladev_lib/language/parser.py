@@ -179,7 +179,10 @@ def _unknown_verb_at(tokens: Sequence[Token], i: int) -> bool:
     return (
         i + 1 < len(tokens)
         and tokens[i].kind == "WORD"
-        and tokens[i + 1].kind in ("DET", "PRON", "OBJ", "QUANT")
+        and (
+            tokens[i + 1].kind in ("DET", "PRON", "OBJ", "QUANT")
+            or (tokens[i + 1].kind == "PERSON" and tokens[i + 1].text in lx.RECIPIENTS)
+        )
     )
 
 
@@ -293,9 +296,9 @@ class _ClauseReader:
         if c.intro == "without":
             return "manner"
         kind = self._action_kind(c)
-        if c.negation and kind in ("place_nodest", "other") and c.verb is not None:
-            if c.verb.lemma in lx.MANNER_VERBS:
-                return "manner"  # "don't drop it": how to do the task, not which task
+        negated_manner = c.verb is not None and c.verb.lemma in lx.MANNER_VERBS
+        if c.negation and kind in ("place_nodest", "other") and negated_manner:
+            return "manner"  # "don't drop it": how to do the task, not which task
         if c.negation and kind in ("topic", "describe", "empty", "preamble"):
             return "manner"  # "so it doesn't fall": negates no action of the four tasks
         return kind
@@ -328,8 +331,9 @@ class _ClauseReader:
                 return "preamble"
             if reverse and not c.placements():
                 return "other"
-            if c.placements():
-                return "place"
+            other_relations = [g for g in c.governed if g.relation == "other" and g.refs]
+            if c.placements() or other_relations:
+                return "place"  # "behind the bottle" too: _placement_task names the relation
             if reverse_particle:
                 return "other"
             return "place_nodest"
@@ -401,9 +405,9 @@ def _resolve_pronouns(clauses: list[Clause]) -> None:
 def _mark_topics(clauses: list[Clause]) -> None:
     """ "the banana on the table, lift it": a verbless phrase taken up by a later pronoun."""
     for k, c in enumerate(clauses):
-        if c.verb is None and c.bare and c.kind == "place":
-            if any(r.pronoun for later in clauses[k + 1 :] for r in later.bare):
-                c.kind = "topic"
+        taken_up = any(r.pronoun for later in clauses[k + 1 :] for r in later.bare)
+        if c.verb is None and c.bare and c.kind == "place" and taken_up:
+            c.kind = "topic"
 
 
 def _same_object(a: _Action, b: _Action) -> bool:

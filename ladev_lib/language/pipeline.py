@@ -104,13 +104,13 @@ def paraphrase_scenes(
             owners.append((t, i))
     verdicts = validator.validate_pairs(pairs, [t.objects for t, _ in owners], [t.expected for t, _ in owners])
     by_scene: dict[str, list[tuple[int, Verdict]]] = {}
-    for (t, i), v in zip(owners, verdicts):
+    for (t, i), v in zip(owners, verdicts, strict=True):
         by_scene.setdefault(t.scene_id, []).append((i, v))
     basics = validator.reader.read([t.instruction for t in tasks], [t.objects for t in tasks])
 
     rows: list[InstructionRow] = []
     missing_selection: list[str] = []
-    for t, basic_parse in zip(tasks, basics):
+    for t, basic_parse in zip(tasks, basics, strict=True):
         answer = answers[t.instruction]
         rows.append(_basic_row(t, basic_parse, answer.call_ids))
         scene_rows = [_candidate_row(t, i, v, answer.call_ids) for i, v in by_scene.get(t.scene_id, [])]
@@ -193,7 +193,7 @@ def _candidate_row(t: SceneTask, i: int, v: Verdict, call_ids: list[str]) -> Ins
         kind="paraphrase",
         text=v.candidate,
         similarity=round(v.similarity, 4),
-        canonical_similarity=round(v.canonical_similarity, 4),
+        canonical_similarity=round(v.canonical_similarity, 4) if v.canonical_similarity is not None else None,
         parsed_task=v.parse.task,
         parsed_source=v.parse.source,
         parsed_target=v.parse.target,

@@ -3,12 +3,13 @@
 Two checks, both recorded for every candidate:
 
 1. **Similarity**: cosine similarity of sentence embeddings (all-MiniLM-L6-v2
-   by default), as in the paper. Two figures are kept: ``similarity``
-   between the sentences as written, and ``canonical_similarity`` between the
-   sentences with every object name replaced by the object's display name.
-   The threshold applies to the canonical one: a synonym the catalog already
-   vouches for ("aubergine" for "eggplant", 0.42 as written) should not sink a
-   candidate, while wording that drifts from the task still does.
+   by default) between the sentences as written, as in the paper. When that
+   falls below the threshold, the sentences are compared once more with every
+   object name replaced by the object's display name (``canonical_similarity``),
+   and the better of the two must reach the threshold: a synonym the catalog
+   vouches for ("aubergine" for "eggplant": 0.42 as written, 0.87 canonical)
+   should not sink a candidate, while wording that drifts from the task still
+   does. Only candidates that need it pay for the second embedding.
 2. **Structure**: the candidate is read back into (task, source, target) —
    by the offline parser, or by an LLM through the ``parse_instruction`` job —
    and must equal the original's.
@@ -27,7 +28,11 @@ import numpy as np
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.language.parser import InstructionParse, InstructionParser
 
-DEFAULT_THRESHOLD = 0.5
+DEFAULT_THRESHOLD = 0.45
+"""A safety net for drift the structural check cannot see ("The history of the Roman empire
+is long. Pick up the coke can.": 0.42). Faithful paraphrases in the labelled sets score
+>= 0.65 (the better of as-written and canonical); the offline generator's lowest over the
+whole catalog is about 0.51."""
 
 
 class TextEmbedder(Protocol):
@@ -57,7 +62,7 @@ class OfflineReader:
     def read(
         self, texts: Sequence[str], scene_objects: Sequence[frozenset[str] | None]
     ) -> list[InstructionParse]:
-        return [self.parser.parse(t, s) for t, s in zip(texts, scene_objects)]
+        return [self.parser.parse(t, s) for t, s in zip(texts, scene_objects, strict=True)]
 
 
 @dataclass(frozen=True)
@@ -67,18 +72,24 @@ class Verdict:
     original: str
     candidate: str
     similarity: float
-    """Cosine similarity of the sentences as written."""
-    canonical_similarity: float
-    """Cosine similarity with object names replaced by display names (the gated figure)."""
+    """Cosine similarity of the sentences as written (the paper's measure)."""
+    canonical_similarity: float | None
+    """The same with object names replaced by display names; computed only when
+    ``similarity`` is below the threshold (None otherwise)."""
     expected: InstructionParse
     parse: InstructionParse
     similar: bool
+    """max(similarity, canonical_similarity) >= threshold."""
     same_structure: bool
     reason: str | None
 
     @property
     def valid(self) -> bool:
         return self.similar and self.same_structure
+
+    @property
+    def best_similarity(self) -> float:
+        return max(self.similarity, self.canonical_similarity or -1.0)
 
 
 def structure_mismatch(expected: InstructionParse, got: InstructionParse) -> str | None:
@@ -107,6 +118,7 @@ class ParaphraseValidator:
         threshold: float = DEFAULT_THRESHOLD,
         reader: StructureReader | None = None,
         catalog: Catalog | None = None,
+        cache_size: int = 50_000,
     ) -> None:
         if not 0.0 <= threshold <= 1.0:
             raise ValueError(f"similarity threshold must be in [0, 1], got {threshold}")
@@ -114,24 +126,28 @@ class ParaphraseValidator:
         self.threshold = threshold
         self.parser = InstructionParser(catalog or load_catalog())
         self.reader = reader or OfflineReader(self.parser)
+        self.cache_size = cache_size
+        self._vectors: dict[str, np.ndarray] = {}
 
-    def similarities(self, pairs: Sequence[tuple[str, str]]) -> tuple[np.ndarray, np.ndarray]:
-        """(as written, canonical) cosine similarity per pair; every distinct text embedded once."""
-        canon = {t: self.parser.canonical_text(t) for pair in pairs for t in pair}
-        texts = list(dict.fromkeys([*canon, *canon.values()]))
-        vectors = self.embedder.encode(texts) if texts else np.zeros((0, 1), dtype=np.float32)
-        row = {t: i for i, t in enumerate(texts)}
+    def embed(self, texts: Sequence[str]) -> dict[str, np.ndarray]:
+        """Unit vectors for ``texts``: new distinct texts in one batch, the rest from the cache."""
+        todo = [t for t in dict.fromkeys(texts) if t not in self._vectors]
+        if todo:
+            if len(self._vectors) + len(todo) > self.cache_size:
+                self._vectors.clear()
+            self._vectors.update(zip(todo, self.embedder.encode(todo), strict=True))
+        return {t: self._vectors[t] for t in texts}
 
-        def cosines(left: list[str], right: list[str]) -> np.ndarray:
-            if not left:
-                return np.zeros(0, dtype=np.float32)
-            a = vectors[[row[t] for t in left]]
-            b = vectors[[row[t] for t in right]]
-            return np.asarray((a * b).sum(axis=1), dtype=np.float32)
+    def similarities(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+        """Cosine similarity of each (original, candidate) as written."""
+        vectors = self.embed([t for pair in pairs for t in pair])
+        return np.array([float(vectors[o] @ vectors[c]) for o, c in pairs], dtype=np.float32)
 
-        raw = cosines([o for o, _ in pairs], [c for _, c in pairs])
-        canonical = cosines([canon[o] for o, _ in pairs], [canon[c] for _, c in pairs])
-        return raw, canonical
+    def canonical_similarities(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+        """Cosine similarity of each pair with object names replaced by display names."""
+        return self.similarities(
+            [(self.parser.canonical_text(o), self.parser.canonical_text(c)) for o, c in pairs]
+        )
 
     def validate_pairs(
         self,
@@ -146,21 +162,28 @@ class ParaphraseValidator:
         spec's task) where given.
         """
         scenes = list(scene_objects) if scene_objects is not None else [None] * len(pairs)
-        raw, canonical = self.similarities(pairs)
-        originals = list(dict.fromkeys((o, s) for (o, _), s in zip(pairs, scenes)))
+        raw = self.similarities(pairs)
+        low = [i for i in range(len(pairs)) if raw[i] < self.threshold]
+        canonical: dict[int, float] = dict(
+            zip(low, self.canonical_similarities([pairs[i] for i in low]).tolist(), strict=True)
+        )
+        originals = list(dict.fromkeys((o, s) for (o, _), s in zip(pairs, scenes, strict=True)))
         parsed_originals = dict(
-            zip(originals, self.reader.read([o for o, _ in originals], [s for _, s in originals]))
+            zip(originals, self.reader.read([o for o, _ in originals], [s for _, s in originals]), strict=True)
         )
         candidate_parses = self.reader.read([c for _, c in pairs], scenes)
         verdicts = []
-        for i, ((orig, cand), scene) in enumerate(zip(pairs, scenes)):
+        for i, ((orig, cand), scene) in enumerate(zip(pairs, scenes, strict=True)):
             exp = (expected[i] if expected is not None else None) or parsed_originals[(orig, scene)]
             got = candidate_parses[i]
             mismatch = structure_mismatch(exp, got)
-            similar = bool(canonical[i] >= self.threshold)
+            best = max(float(raw[i]), canonical.get(i, -1.0))
+            similar = best >= self.threshold
             reasons = []
             if not similar:
-                reasons.append(f"similarity {canonical[i]:.2f} < {self.threshold:.2f}")
+                reasons.append(
+                    f"similarity {raw[i]:.2f} (canonical names {canonical[i]:.2f}) < {self.threshold:.2f}"
+                )
             if mismatch:
                 reasons.append(mismatch)
             verdicts.append(
@@ -168,7 +191,7 @@ class ParaphraseValidator:
                     original=orig,
                     candidate=cand,
                     similarity=float(raw[i]),
-                    canonical_similarity=float(canonical[i]),
+                    canonical_similarity=canonical.get(i),
                     expected=exp,
                     parse=got,
                     similar=similar,
