@@ -132,7 +132,10 @@ def evaluate_validator(
 
 
 def render_markdown(
-    evaluations: dict[str, ValidatorEvaluation], validator: ParaphraseValidator, model: str
+    evaluations: dict[str, ValidatorEvaluation],
+    validator: ParaphraseValidator,
+    model: str,
+    notes: Sequence[str] = (),
 ) -> str:
     lines = [
         "# Paraphrase validator: precision and recall of \"valid\"",
@@ -143,6 +146,8 @@ def render_markdown(
         "use the threshold that is best **for that very set** (an optimistic baseline); "
         "the similarity is cosine similarity of the sentences as written, as in the paper.",
         "",
+        *(f"- {note}" for note in notes),
+        *([""] if notes else []),
     ]
     for name, ev in evaluations.items():
         n_same = sum(p.same for p in ev.pairs)
