@@ -28,22 +28,33 @@ if TYPE_CHECKING:
 RULES_VERSION = "1"
 
 HANDLER_MODULES: tuple[str, ...] = (
-    "ladev_lib.llm.offline_scenes",
+    "ladev_lib.llm.offline_scenes",  # describe_scenes, compile_scene
+    "ladev_lib.language.offline_jobs",  # paraphrase, parse_instruction (the language work)
 )
 """Modules that register offline jobs when imported. Each may list further
-modules its rules live in as ``RULE_MODULES``; all of them are fingerprinted."""
+modules its rules live in as ``RULE_MODULES``; all of them are fingerprinted.
+A listed module that is not part of this install is skipped (its jobs are then
+unknown, and asking for one lists the known jobs)."""
 
 
-def _import_handlers() -> None:
+def _import_handlers() -> list[str]:
+    """Import the handler modules present; their names."""
+    present = []
     for name in HANDLER_MODULES:
-        importlib.import_module(name)
+        try:
+            importlib.import_module(name)
+        except ModuleNotFoundError as exc:
+            if exc.name != name:
+                raise  # the module is there but something it needs is not
+            continue
+        present.append(name)
+    return present
 
 
 @functools.lru_cache(maxsize=1)
 def rules_fingerprint() -> str:
     """Hash of the source of every module the offline rules live in."""
-    _import_handlers()
-    names: set[str] = set(HANDLER_MODULES)
+    names: set[str] = set(_import_handlers())
     for job in OFFLINE_JOBS.names():
         module = inspect.getmodule(OFFLINE_JOBS.get(job))
         if module is not None:

@@ -19,13 +19,14 @@ from typing import Any
 
 from ladev_lib.catalog import load_catalog
 from ladev_lib.llm.base import OFFLINE_JOBS, LLMRequest
-from ladev_lib.llm.scene_grammar import Vocabulary, read_description
+from ladev_lib.llm.grammar import RULE_MODULES as GRAMMAR_MODULES
+from ladev_lib.llm.grammar import Vocabulary, read_description
 from ladev_lib.llm.scene_writer import write_scene
 from ladev_lib.scenes.spec import SceneBounds
 from ladev_lib.study.seeds import derive_seed
 
 RULE_MODULES = (
-    "ladev_lib.llm.scene_grammar",
+    *GRAMMAR_MODULES,
     "ladev_lib.llm.scene_writer",
     "ladev_lib.study.seeds",
     "ladev_lib.scenes.sampling",

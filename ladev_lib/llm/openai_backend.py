@@ -24,7 +24,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from ladev_lib.errors import ConfigError, LadevError, MissingExtraError
+from ladev_lib.errors import ConfigError, LLMCallError, MissingExtraError
 from ladev_lib.llm.base import LLMRequest, LLMResponse
 
 if TYPE_CHECKING:
@@ -33,9 +33,7 @@ if TYPE_CHECKING:
 _MODES = ("json_schema", "json_object", "none")
 _RETRY_STATUS = {408, 409, 429}
 
-
-class LLMCallError(LadevError):
-    """A call failed after its retries (rate limits, server errors, timeouts)."""
+__all__ = ["LLMCallError", "OpenAIBackend"]
 
 
 def _schema_name(job: str) -> str:

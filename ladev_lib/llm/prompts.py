@@ -80,9 +80,14 @@ def load_prompts(cfg: Mapping[str, Any], jobs: list[str] | None = None) -> dict[
     return out
 
 
+@functools.lru_cache(maxsize=256)
+def _compiled(template: str) -> jinja2.Template:
+    return _environment().from_string(template)
+
+
 def render(template: str, inputs: Mapping[str, Any], where: str = "prompt") -> str:
     try:
-        return _environment().from_string(template).render(**inputs).strip()
+        return _compiled(template).render(**inputs).strip()
     except jinja2.TemplateError as exc:
         raise ConfigError(f"cannot render {where}: {exc}") from exc
 

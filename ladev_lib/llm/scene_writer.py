@@ -63,8 +63,8 @@ def region_words(x: float, y: float, bounds: SceneBounds) -> str:
     (x0, x1), (y0, y1) = bounds.workspace_x_m, bounds.workspace_y_m
     fx = (x - x0) / (x1 - x0)
     fy = (y - y0) / (y1 - y0)
-    vertical = "front" if fx > 0.6 else "back" if fx < 0.4 else ""
-    horizontal = "left" if fy > 0.6 else "right" if fy < 0.4 else ""
+    vertical = "front" if fx > 2 / 3 else "back" if fx < 1 / 3 else ""
+    horizontal = "left" if fy > 2 / 3 else "right" if fy < 1 / 3 else ""
     if vertical and horizontal:
         return f"{vertical} {horizontal}"
     return vertical or horizontal or "middle"
@@ -77,10 +77,12 @@ def _where(p: ObjectPlacement, style: str, rng: np.random.Generator, bounds: Sce
     if r < 0.4:
         words = region_words(p.x, p.y, bounds)
         if words == "middle":
-            return "in the middle"
-        return rng.choice([f"on the {words}", f"at the {words}", f"in the {words}"]) + (
-            " side" if " " not in words and rng.random() < 0.3 else ""
-        )
+            return str(rng.choice(["in the middle", "in the center"]))
+        if words in ("left", "right"):
+            return str(rng.choice([f"on the {words}", f"on the {words} side", f"to the {words}"]))
+        if words in ("front", "back"):
+            return str(rng.choice([f"at the {words}", f"in the {words}"]))
+        return str(rng.choice([f"in the {words} corner", f"at the {words}", f"{words}"]))
     if r < 0.5:
         return f"at ({p.x:.3f}, {p.y:.3f})"
     return None
@@ -121,12 +123,17 @@ def lighting_phrase(delta: float, style: str, rng: np.random.Generator) -> str:
     return str(rng.choice(templates))
 
 
-def camera_phrases(camera: CameraOffset, style: str) -> list[str]:
-    """The camera change as short phrases (largest components, rounded to cm and degrees)."""
+def camera_phrases(camera: CameraOffset, style: str, bounds: SceneBounds | None = None) -> list[str]:
+    """The camera change as short phrases (rounded to cm and degrees, kept within the bounds)."""
     if camera.is_default:
         return []
+    bounds = bounds or SceneBounds()
     cm = [round(v * 100) for v in camera.translation_m]
     deg = [round(v) for v in camera.rotation_deg]
+    while math.hypot(*cm) > bounds.camera_max_translation_m * 100 + 1e-9:
+        k = max(range(3), key=lambda i: abs(cm[i]))
+        cm[k] -= 1 if cm[k] > 0 else -1  # rounding up must not leave the bound
+    deg = [max(-int(bounds.camera_max_rotation_deg), min(int(bounds.camera_max_rotation_deg), d)) for d in deg]
     if not any(cm) and not any(deg):
         k = int(np.argmax(np.abs(camera.translation_m)))
         cm[k] = 1 if camera.translation_m[k] > 0 else -1
@@ -178,7 +185,7 @@ def _prose(items: list[_Item], randoms: int, env: list[str], set_word: str, rng:
     if randoms:
         named.append(f"{_count(randoms, rng)} other {set_word}{_plural(randoms, 'object')}")
     listing = named[0] if len(named) == 1 else ", ".join(named[:-1]) + " and " + named[-1]
-    opener = str(rng.choice(["On the table there are", "The scene holds", "Put", "A table with"]))
+    opener = str(rng.choice(["On the table there are", "The scene holds", "Place", "A table with"]))
     if n == 1:
         opener = str(rng.choice(["On the table there is", "The scene holds", "A table with"]))
         text = f"{opener} {listing}."
@@ -274,7 +281,7 @@ def write_scene(
     light = lighting_phrase(spec.lighting.intensity_delta, style, rng)
     if light:
         env.append(light)
-    env += camera_phrases(spec.camera, style)
+    env += camera_phrases(spec.camera, style, bounds)
     set_word = ""
     if object_set == "ycb" and rng.random() < 0.7:
         set_word = "YCB "

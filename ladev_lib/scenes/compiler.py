@@ -115,9 +115,18 @@ class _Slot:
     mention: str | None = None
 
 
+def _same(slot: _Slot, res: Resolution) -> bool:
+    """Does this slot hold the object (or an object of the category) a mention resolved to?"""
+    if res.obj is not None:
+        return slot.obj is not None and slot.obj.id == res.obj.id
+    if res.category is not None:
+        return slot.category == res.category or (slot.obj is not None and slot.obj.category == res.category)
+    return False
+
+
 # -- regions of the workspace, from the robot's point of view ----------------------
 
-_BAND = 0.4  # a side region is the outer 40% of the workspace along its axis
+_BAND = 1 / 3  # a side region is the outer third of the workspace along its axis
 
 
 def region_box(
@@ -155,7 +164,9 @@ def relation_box(
         return (ref_x + 0.03, ref_x + distance + side), (ref_y - side, ref_y + side)
     if relation == "behind":
         return (ref_x - distance - side, ref_x - 0.03), (ref_y - side, ref_y + side)
-    return (ref_x - distance, ref_x + distance), (ref_y - distance, ref_y + distance)
+    # 'near': the square inscribed in the circle of radius `distance`, so every point is near.
+    half = distance / math.sqrt(2)
+    return (ref_x - half, ref_x + half), (ref_y - half, ref_y + half)
 
 
 # -- the compiler ----------------------------------------------------------------------
@@ -194,6 +205,13 @@ class _Compilation:
             n = int(self.rng.integers(lo, hi + 1))
             self.slots = [_Slot() for _ in range(n)]
             self.notes.append(f"no objects named: {n} random object(s)")
+        # An object named only as a reference ("near the bowl") is in the scene too.
+        for slot in list(self.slots):
+            pos = slot.position
+            if pos is not None and pos.relation is not None and pos.reference:
+                res = self.resolve(pos.reference, "position reference")
+                if not any(s is not slot and _same(s, res) for s in self.slots):
+                    self._ensure(res, "reference", pos.reference)
 
     def _slot_for(self, op: AddObject) -> _Slot:
         if op.object is None or not op.object.strip():
@@ -207,14 +225,14 @@ class _Compilation:
     def _ensure(self, res: Resolution, role: str, mention: str) -> _Slot:
         """The slot holding this object (or category); it takes a random slot or is added."""
         for slot in self.slots:
-            if slot.role != "distractor":
-                continue
-            if res.obj is not None and slot.obj is not None and slot.obj.id == res.obj.id:
+            if slot.role == "distractor" and _same(slot, res):
                 return slot
-            if res.category is not None and (
-                slot.category == res.category or (slot.obj is not None and slot.obj.category == res.category)
-            ):
-                return slot
+        if res.obj is not None:
+            # "two fruits" + "pick up the orange": the orange is one of the fruits.
+            for slot in self.slots:
+                if slot.role == "distractor" and slot.obj is None and slot.category == res.obj.category:
+                    slot.obj, slot.mention = res.obj, mention
+                    return slot
         for slot in self.slots:
             if slot.obj is None and slot.category is None and slot.role == "distractor":
                 slot.obj, slot.category, slot.mention = res.obj, res.category, mention
@@ -411,7 +429,8 @@ class _Compilation:
         norm = float(np.linalg.norm(t))
         if norm > max_t + 1e-9:
             self.notes.append(f"camera move {norm * 100:.1f} cm clamped to {max_t * 100:.1f} cm")
-            t = t * (max_t / norm)
+            # Truncate towards zero so that rounding cannot push the move past the bound.
+            t = np.trunc(t * (max_t / norm) * 1e4) / 1e4
         for k, axis in enumerate(("roll", "pitch", "yaw")):
             if abs(r[k]) > max_r + 1e-9:
                 self.notes.append(f"camera {axis} {r[k]:+.1f} deg clamped to {math.copysign(max_r, r[k]):+.1f} deg")
