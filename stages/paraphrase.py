@@ -54,7 +54,7 @@ def main(params_path: str = "params.yaml") -> int:
         validator=validator,
         k=int(study["paraphrases_per_instruction"]),
         seed=int(study["seed"]),
-        progress=lambda items, total, desc: tqdm(items, total=total, desc=desc, unit="instruction"),
+        progress=lambda items, total, desc: tqdm(items, total=total, desc=desc),
     )
     write_table(outcome.rows, paths["instructions"], InstructionRow)
 

@@ -37,6 +37,8 @@ from ladev_lib.scenes.spec import SceneSpec
 from ladev_lib.tables import CompiledSceneRow, InstructionRow, SceneDesignRow
 
 Progress = Callable[[Iterable[Any], int, str], Iterable[Any]]
+VALIDATION_CHUNK = 512
+"""Candidates validated per batch (one progress step)."""
 
 
 def _no_progress(items: Iterable[Any], total: int, desc: str) -> Iterable[Any]:
@@ -102,7 +104,13 @@ def paraphrase_scenes(
         for i, cand in enumerate(answers[t.instruction].candidates, start=1):
             pairs.append((t.instruction, cand))
             owners.append((t, i))
-    verdicts = validator.validate_pairs(pairs, [t.objects for t, _ in owners], [t.expected for t, _ in owners])
+    verdicts: list[Verdict] = []
+    chunks = range(0, len(pairs), VALIDATION_CHUNK)
+    for start in progress(chunks, len(chunks), "validate"):
+        part = owners[start : start + VALIDATION_CHUNK]
+        verdicts += validator.validate_pairs(
+            pairs[start : start + VALIDATION_CHUNK], [t.objects for t, _ in part], [t.expected for t, _ in part]
+        )
     by_scene: dict[str, list[tuple[int, Verdict]]] = {}
     for (t, i), v in zip(owners, verdicts, strict=True):
         by_scene.setdefault(t.scene_id, []).append((i, v))

@@ -167,14 +167,17 @@ class ParaphraseValidator:
         canonical: dict[int, float] = dict(
             zip(low, self.canonical_similarities([pairs[i] for i in low]).tolist(), strict=True)
         )
-        originals = list(dict.fromkeys((o, s) for (o, _), s in zip(pairs, scenes, strict=True)))
+        given = list(expected) if expected is not None else [None] * len(pairs)
+        originals = list(
+            dict.fromkeys((o, s) for (o, _), s, e in zip(pairs, scenes, given, strict=True) if e is None)
+        )
         parsed_originals = dict(
             zip(originals, self.reader.read([o for o, _ in originals], [s for _, s in originals]), strict=True)
         )
         candidate_parses = self.reader.read([c for _, c in pairs], scenes)
         verdicts = []
         for i, ((orig, cand), scene) in enumerate(zip(pairs, scenes, strict=True)):
-            exp = (expected[i] if expected is not None else None) or parsed_originals[(orig, scene)]
+            exp = given[i] or parsed_originals[(orig, scene)]
             got = candidate_parses[i]
             mismatch = structure_mismatch(exp, got)
             best = max(float(raw[i]), canonical.get(i, -1.0))

@@ -95,18 +95,18 @@ def test_bad_llm_answers_become_rows_with_reasons(validator, repo_root):
 
 @pytest.mark.slow
 def test_stage_under_dvc_repro(repo_root, tmp_path):
-    """`dvc repro` runs the stage in a copy of the repository; a second repro does nothing;
-    a changed validation parameter re-runs it without new LLM calls."""
+    """`dvc repro paraphrase` in a copy of the repository runs generate -> compile -> paraphrase;
+    a second repro does nothing; a changed validation parameter re-runs only the paraphrase
+    stage, without new LLM calls."""
     files = subprocess.run(
         ["git", "ls-files", "--cached", "--others", "--exclude-standard"],
         cwd=repo_root, capture_output=True, text=True, check=True,
     ).stdout.split()
     copy = tmp_path / "repo"
     for rel in files:
-        if (repo_root / rel).is_file():
+        if (repo_root / rel).is_file() and not rel.startswith(("data/", "reports/")):
             (copy / rel).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(repo_root / rel, copy / rel)
-    cfg = write_stage_inputs(copy, copy)
     env = {**os.environ, "PYTHONPATH": str(copy), "PATH": f"{Path(sys.executable).parent}:{os.environ['PATH']}",
            "HF_HUB_OFFLINE": "1", "LP_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
     git = ["git", "-c", "user.email=test@ladev", "-c", "user.name=test"]
@@ -115,19 +115,29 @@ def test_stage_under_dvc_repro(repo_root, tmp_path):
     subprocess.run([*git, "commit", "-qm", "copy"], cwd=copy, check=True)
 
     def repro() -> str:
-        done = subprocess.run(["dvc", "repro", "--single-item", "paraphrase"], cwd=copy, env=env,
-                              capture_output=True, text=True, timeout=600)
+        done = subprocess.run(["dvc", "repro", "paraphrase"], cwd=copy, env=env,
+                              capture_output=True, text=True, timeout=900)
         assert done.returncode == 0, done.stdout + done.stderr
         return done.stdout
 
     out = repro()
-    assert "Running stage 'paraphrase'" in out and "LLM calls 16" in out
-    assert (copy / cfg["paths"]["instructions"]).exists()
-    assert "didn't change" in repro()
+    for stage in ("generate", "compile", "paraphrase"):
+        assert f"Running stage '{stage}'" in out
     params = yaml.safe_load((copy / "params.yaml").read_text())
+    df = read_table(copy / params["paths"]["instructions"], InstructionRow)
+    k = params["study"]["paraphrases_per_instruction"]
+    basic = df.filter(pl.col("kind") == "basic")
+    assert basic.height > 0 and df.filter(pl.col("kind") == "paraphrase").height == k * basic.height
+    chosen = df.filter(pl.col("selected") & (pl.col("kind") == "paraphrase"))
+    assert chosen.height == basic.filter(pl.col("scene_id").str.contains("-instruction-")).height > 0
+    assert chosen["valid"].all()
+
+    again = repro()
+    assert "didn't change" in again and "Running stage" not in again
     params["paraphrase"]["similarity_threshold"] = 0.6
     (copy / "params.yaml").write_text(yaml.safe_dump(params, sort_keys=False))
     out = repro()
-    assert "Running stage 'paraphrase'" in out and "LLM calls 0" in out
+    assert "Running stage 'paraphrase'" in out and "Running stage 'compile'" not in out
+    assert "LLM calls 0" in out
     lock = yaml.safe_load((copy / "dvc.lock").read_text())
     assert json.dumps(lock["stages"]["paraphrase"]["params"]).count("similarity_threshold") == 1
