@@ -33,6 +33,7 @@ PARSE_JOB = "parse_instruction"
 RULE_MODULES: tuple[str, ...] = (
     "ladev_lib.language.paraphrase",
     "ladev_lib.language.parser",
+    "ladev_lib.language.clauses",
     "ladev_lib.language.tokens",
     "ladev_lib.language.lexicon",
     "ladev_lib.language.mentions",
