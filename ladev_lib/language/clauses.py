@@ -228,6 +228,8 @@ class ClauseReader:
                 start = k + 1
             return refs, []
         words = [w for t in content for w in t.text.split()]
+        if "of" in words[:-1]:
+            words = words[len(words) - words[::-1].index("of") :]  # "can of coca cola" -> "coca cola"
         if not words:
             return [], [text] if text else []
         found = self.index.resolve_head(words, self.scene, text)

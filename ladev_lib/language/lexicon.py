@@ -185,6 +185,11 @@ DETERMINERS = frozenset(["the", "a", "an", "that", "this", "these", "those", "yo
 PRONOUNS = frozenset({"it", "that", "this", "them"})
 """Words that stand for an object already mentioned ("pick it up")."""
 PLURAL_PRONOUNS = frozenset({"them", "these", "those"})
+RELATIVE_PRONOUNS = frozenset({"that", "which", "who"})
+CONTAINER_NOUNS = frozenset(
+    {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair"}
+)
+"""Nouns in "a can of X": X names the object."""
 RECIPIENTS = frozenset({"me", "us", "him", "her"})
 """After an action verb these make it a hand-over ("bring me the can")."""
 QUANTIFIERS = frozenset(

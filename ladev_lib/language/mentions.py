@@ -141,8 +141,26 @@ class NameIndex:
             return ObjectRef(text, problem=f"'{text}' is plural: more than one object")
         candidates = self._candidates(head)
         if not candidates:
-            return None
+            return self._by_identity_words(words, scene, text)
         return self._narrow(candidates, modifiers, scene, text)
+
+    def _by_identity_words(
+        self, words: Sequence[str], scene: frozenset[str] | None, text: str
+    ) -> ObjectRef | None:
+        """A phrase that is part of names ("the mustard", "coca cola"): the objects whose names
+        hold all its words that are not colours or sizes."""
+        identity = {w for w in words if w in self.name_words and w not in _PALETTE and w not in lx.SIZE_WORDS}
+        if not identity:
+            return None
+        pool = {
+            o.id
+            for o in self.catalog
+            if any(identity <= set(normalize_name(n).split()) for n in o.names)
+        }
+        if not pool:
+            return None
+        descriptive = [w for w in words if w not in identity]
+        return self._narrow(pool, descriptive, scene, text)
 
     def _narrow(
         self, candidates: set[str], modifiers: Sequence[str], scene: frozenset[str] | None, text: str

@@ -17,7 +17,7 @@ from ladev_lib.language import lexicon as lx
 from ladev_lib.language.mentions import NameIndex
 
 Kind = str
-# OBJ PRON DET QUANT REL VERB NEG BE AUX MODAL PART CONJ SEQ RESULT PUNCT PERSON ADV REPEAT WORD
+# OBJ PRON RELPRON DET QUANT REL VERB NEG BE AUX MODAL PART CONJ SEQ RESULT PUNCT PERSON ADV REPEAT WORD
 
 
 @dataclass(frozen=True)
@@ -181,6 +181,8 @@ def _relation_at(words: list[str], i: int, index: NameIndex) -> tuple[tuple[str,
         if kind is None:
             continue
         nxt = i + n
+        if phrase == ("of",) and i > 0 and words[i - 1] in lx.CONTAINER_NOUNS:
+            return None  # "a can of coca-cola": one noun phrase, not a relation
         if phrase == ("to",) and not _starts_phrase(words, nxt, index):
             return None  # "to" before a verb marks an infinitive ("try to pick")
         if n == 1 and phrase[0] in lx.PARTICLES and not _starts_phrase(words, nxt, index):
@@ -204,7 +206,14 @@ def _tag_word(
         return Token("NEG", w)
     if w in lx.PERSONS:
         return Token("PERSON", w)
-    if w in ("that", "this") and _starts_phrase(words, i + 1, index) and words[i + 1] not in lx.PRONOUNS:
+    nxt = words[i + 1] if i + 1 < len(words) else ""
+    after_noun = prev is not None and prev.kind in ("OBJ", "WORD")
+    if w in lx.RELATIVE_PRONOUNS and after_noun and (nxt in lx.COPULAS or nxt in lx.MODALS or nxt in lx.VERBS):
+        return Token("RELPRON", w)  # "the can that is on the table": what follows describes it
+    if w in ("that", "this") and nxt not in lx.PRONOUNS and (
+        _starts_phrase(words, i + 1, index)
+        or (nxt == "can" and (words[i + 2] if i + 2 < len(words) else "") not in lx.PERSONS)
+    ):
         return Token("DET", w)
     if w in lx.PRONOUNS:
         return Token("PRON", w)

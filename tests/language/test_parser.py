@@ -37,6 +37,11 @@ from ladev_lib.language.parser import InstructionParser, parse_instruction
         ("There's a coke can on the table. Pick it up.", ("pick_up", "coke_can", None)),
         ("pick up the coke can but don't squeeze it", ("pick_up", "coke_can", None)),
         ("pick up the coke can, not the pepsi can", ("pick_up", "coke_can", None)),
+        # relative clauses, "a can of ...", partial names
+        ("Please pick up the coke can that is on the table.", ("pick_up", "coke_can", None)),
+        ("Place the carrot on the plate that's on the table.", ("put_on", "carrot", "plate")),
+        ("Pick up that can of Coca-Cola.", ("pick_up", "coke_can", None)),
+        ("grab the mustard", ("pick_up", "006_mustard_bottle", None)),
         # word order, passives, goals, topics
         ("on the plate, put the carrot", ("put_on", "carrot", "plate")),
         ("into the bowl goes the banana", ("put_in", "011_banana", "024_bowl")),
@@ -80,6 +85,8 @@ def test_reads_faithful_forms(text, roles):
         ("pick up the coke can or the pepsi can", "alternative objects"),
         ("move the green cube near the yellow cube and the sponge", "more than one destination"),
         ("pick up the coke can next to the pepsi can", "mentions another object: pepsi_can"),
+        ("pick up the coke can that is next to the pepsi can", "mentions another object: pepsi_can"),
+        ("pick up the lego", "ambiguous"),
         ("pick up the coke cans", "plural"),
         ("pick up both coke cans", "quantity"),
         ("pick up the coke can twice", "more than once"),
