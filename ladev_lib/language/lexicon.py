@@ -195,7 +195,10 @@ RECIPIENTS = frozenset({"me", "us", "him", "her"})
 QUANTIFIERS = frozenset(
     ["all", "every", "each", "both", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "several", "many", "multiple"]
 )
-NEGATIONS = frozenset({"not", "never", "avoid", "avoiding", "refrain", "refraining", "no", "without", "nor"})
+NEGATIONS = frozenset(
+    {"not", "never", "avoid", "avoiding", "refrain", "refraining", "no", "without", "nor", "nobody",
+     "neither", "forget", "stop", "stopping", "quit", "cease"}
+)
 COPULAS = frozenset(["is", "are", "be", "being", "been", "was", "were", "am"])
 AUXILIARIES = frozenset(["do", "does", "did"])
 REPETITION = frozenset(["twice", "thrice", "repeatedly", "times"])

@@ -168,6 +168,9 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)
     if a.kind == "place" and b.kind == "release":
         return _Action("place", both)
+    leaves = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma == "leave"
+    if a.kind == "place" and leaves:
+        return _Action("place", both)  # "... and leave it there"
     return None
 
 

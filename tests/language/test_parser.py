@@ -58,6 +58,8 @@ from ladev_lib.language.parser import InstructionParser, parse_instruction
         ("using your gripper, move the banana until it is next to the mug", ("move_near", "011_banana", "025_mug")),
         ("put it on the plate after picking up the carrot", ("put_on", "carrot", "plate")),
         ("put the eggplant into the basket, and let go", ("put_in", "eggplant", "basket")),
+        ("put the carrot on the plate and leave it there", ("put_on", "carrot", "plate")),
+        ("put the carrot onto the plate, not into the basket", ("put_on", "carrot", "plate")),
     ],
 )
 def test_reads_faithful_forms(text, roles):
@@ -72,6 +74,10 @@ def test_reads_faithful_forms(text, roles):
         ("don't pick up the coke can", "negated"),
         ("you should not pick up the yellow cube", "negated"),
         ("avoid picking up the blue plastic bottle", "negated"),
+        ("nobody should pick up the coke can", "negated"),
+        ("stop picking up the coke can", "negated"),
+        ("the coke can should not be picked up", "negated"),
+        ("pick up the coke can with the spoon", "mentions another object: spoon"),
         ("I don't want the carrot on the plate", "negated"),
         ("pick up the coke can and then put it down", "extra step"),
         ("put the eggplant in the basket and then take it out again", "extra step"),
