@@ -22,7 +22,7 @@ from ladev_lib.language.embeddings import load_embedder  # noqa: E402
 from ladev_lib.language.instructions import basic_instruction  # noqa: E402
 from ladev_lib.language.paraphrase import offline_paraphrases  # noqa: E402
 from ladev_lib.language.parser import InstructionParser  # noqa: E402
-from ladev_lib.language.validator import ParaphraseValidator  # noqa: E402
+from ladev_lib.language.validator import ParaphraseValidator, resolve_precision  # noqa: E402
 
 TASKS = [
     ("pick_up", "coke_can", None), ("pick_up", "011_banana", None), ("pick_up", "eggplant", None),
@@ -55,6 +55,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--pairs", type=int, default=2000)
     ap.add_argument("--batch-sizes", default="32,64,128")
+    ap.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (side by side)")
     args = ap.parse_args()
 
     print(f"torch threads {torch.get_num_threads()}, cpu count {os.cpu_count()}, "
@@ -68,16 +69,17 @@ def main() -> None:
 
     embedder.encode([c for _, c in pairs[:64]])  # warm-up
     print(f"{len(pairs)} pairs, {len({t for p in pairs for t in p})} distinct texts")
-    for bs in (int(b) for b in args.batch_sizes.split(",")):
-        embedder.batch_size = bs
-        validator = ParaphraseValidator(embedder)  # a fresh embedding cache each time
-        t0, c0 = time.perf_counter(), time.process_time()
-        raw = validator.similarities(pairs)
-        low = [p for p, s in zip(pairs, raw, strict=True) if s < validator.threshold]
-        validator.canonical_similarities(low)
-        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-        print(f"similarity part, batch {bs:4d}:        {rate(len(pairs), wall, cpu)}"
-              f"  ({len(low)} below the threshold re-compared with canonical names)")
+    for precision in args.precisions.split(","):
+        for bs in (int(b) for b in args.batch_sizes.split(",")):
+            embedder.batch_size = bs
+            validator = ParaphraseValidator(embedder, precision=precision)  # a fresh embedding cache
+            t0, c0 = time.perf_counter(), time.process_time()
+            raw = validator.similarities(pairs)
+            low = [p for p, s in zip(pairs, raw, strict=True) if s < validator.threshold]
+            validator.canonical_similarities(low)
+            wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+            print(f"similarity part, {precision}, batch {bs:4d}: {rate(len(pairs), wall, cpu)}"
+                  f"  ({len(low)} below the threshold re-compared with canonical names)")
     embedder.batch_size = 64
 
     parser = InstructionParser()
@@ -85,11 +87,11 @@ def main() -> None:
     for _, c in pairs:
         parser.parse(c)
     print(f"structural parse:                    {rate(len(pairs), time.perf_counter() - t0)}")
-    validator = ParaphraseValidator(embedder)
+    validator = ParaphraseValidator(embedder, precision=resolve_precision("auto"))
     t0, c0 = time.perf_counter(), time.process_time()
     verdicts = validator.validate_pairs(pairs)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    print(f"full validation (both checks):       {rate(len(pairs), wall, cpu)}; "
+    print(f"full validation ({validator.precision}, both checks): {rate(len(pairs), wall, cpu)}; "
           f"{sum(v.valid for v in verdicts)}/{len(verdicts)} valid")
 
 

@@ -21,7 +21,11 @@ from ladev_lib.language.evaluation import (  # noqa: E402
     load_labelled_pairs,
     render_markdown,
 )
-from ladev_lib.language.validator import DEFAULT_THRESHOLD, ParaphraseValidator  # noqa: E402
+from ladev_lib.language.validator import (  # noqa: E402
+    DEFAULT_THRESHOLD,
+    ParaphraseValidator,
+    resolve_precision,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTES = (
@@ -47,11 +51,13 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--threshold", type=float, default=DEFAULT_THRESHOLD)
     ap.add_argument("--model", default="all-MiniLM-L6-v2")
+    ap.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
     ap.add_argument("-o", "--output", default=str(ROOT / "reports/paraphrase_validator.md"))
     args = ap.parse_args()
-    validator = ParaphraseValidator(load_embedder(args.model), threshold=args.threshold)
+    precision = resolve_precision(args.precision)
+    validator = ParaphraseValidator(load_embedder(args.model), threshold=args.threshold, precision=precision)
     evaluations = {name: evaluate_validator(load_labelled_pairs(path), validator) for name, path in SETS.items()}
-    text = render_markdown(evaluations, validator, args.model, NOTES)
+    text = render_markdown(evaluations, validator, f"{args.model} ({precision})", NOTES)
     print(text)
     out = Path(args.output)
     out.parent.mkdir(parents=True, exist_ok=True)

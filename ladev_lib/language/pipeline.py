@@ -29,7 +29,7 @@ from ladev_lib.language.embeddings import load_embedder
 from ladev_lib.language.llm_jobs import LLMReader, ParaphraseAnswer, paraphrase_request
 from ladev_lib.language.paraphrase import sentence_key
 from ladev_lib.language.parser import InstructionParse
-from ladev_lib.language.validator import ParaphraseValidator, Verdict
+from ladev_lib.language.validator import ParaphraseValidator, Verdict, resolve_precision
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig
 from ladev_lib.llm.prompts import PromptTemplate
@@ -271,4 +271,5 @@ def make_validator(
         threshold=cfg.similarity_threshold if threshold is None else threshold,
         reader=reader,
         catalog=catalog,
+        precision=resolve_precision(cfg.precision, cfg.device),
     )

@@ -53,9 +53,14 @@ def minilm():
 
 @pytest.fixture(scope="session")
 def validator(minilm):
-    from ladev_lib.language.validator import ParaphraseValidator
+    """The validator as configured by default (threshold, precision auto)."""
+    from ladev_lib.language.config import ParaphraseConfig
+    from ladev_lib.language.validator import ParaphraseValidator, resolve_precision
 
-    return ParaphraseValidator(minilm)
+    cfg = ParaphraseConfig()
+    return ParaphraseValidator(
+        minilm, threshold=cfg.similarity_threshold, precision=resolve_precision(cfg.precision)
+    )
 
 
 def catalog_cases(catalog: Catalog) -> list[tuple[str, str, str | None]]:

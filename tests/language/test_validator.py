@@ -89,3 +89,14 @@ def test_structure_mismatch_names_what_changed(got, reason):
 def test_threshold_range_is_checked(bow_embedder):
     with pytest.raises(ValueError, match="threshold"):
         ParaphraseValidator(bow_embedder, threshold=1.5)
+
+
+def test_bf16_similarities_stay_close_to_fp32(minilm):
+    pairs = [("pick up the coke can", "could you lift the can of coke"),
+             ("put the eggplant in the basket", "toss the aubergine into the bin"),
+             ("move the apple near the sponge", "move the sponge near the apple")]
+    fp32 = ParaphraseValidator(minilm, precision="fp32").similarities(pairs)
+    bf16 = ParaphraseValidator(minilm, precision="bf16").similarities(pairs)
+    assert abs(fp32 - bf16).max() < 0.01
+    with pytest.raises(ValueError, match="precision"):
+        ParaphraseValidator(minilm, precision="fp16")
