@@ -27,9 +27,10 @@ run: setup             ## the main job: the default study end to end, then its h
 	$(BIN)/dvc repro
 	$(BIN)/ladev summary
 
-test: setup            ## every test, rendering included (what CI runs)
+test: setup            ## every test, rendering and the VLA adapter environments included (what CI runs)
 	@bash scripts/setup_latex.sh || echo "[latex] not installed: the pdflatex check of the LaTeX tables will be skipped"
 	$(BIN)/pytest -q
+	@$(MAKE) --no-print-directory test-adapters
 
 test-fast: setup       ## tests that do not build simulator scenes
 	$(BIN)/pytest -q -m "not sim and not slow"
@@ -51,3 +52,6 @@ bench: setup           ## benchmarks that print figures (not timed tests)
 
 clean-data:            ## remove generated data and reports (keeps the caches)
 	rm -rf data/*.parquet data/episodes data/media reports/*
+
+# VLA adapter environments: make test-adapters (see mk/adapters.mk)
+include mk/adapters.mk

@@ -36,3 +36,10 @@ class MissingExtraError(LadevError, ImportError):
         super().__init__(
             f"{what} needs the optional extra '{extra}': pip install 'ladev[{extra}]'{detail}"
         )
+
+
+class LLMCallError(LadevError):
+    """An LLM call failed after its retries (rate limits, server errors, timeouts).
+
+    Stages record it on the rows the call was for and go on.
+    """

@@ -101,6 +101,12 @@ class InstructionRow(TableRow):
     reason: str | None = Field(default=None, description="Why the candidate was rejected.")
     selected: bool = Field(default=False, description="Used in rollout (basic, and the one paraphrase drawn per scene).")
     llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
+    canonical_similarity: float | None = Field(
+        default=None,
+        description="Cosine similarity with object names replaced by display names, computed when "
+        "'similarity' is below the threshold (the better of the two must reach it); null otherwise "
+        "and for basic.",
+    )
 
 
 class EpisodeRow(TableRow):

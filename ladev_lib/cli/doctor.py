@@ -15,7 +15,7 @@ from ladev_lib.sim.render_probe import probe_rendering
 EXTRAS = {
     "ray": ["ray"],
     "rt1": ["tensorflow", "tf_agents"],
-    "octo": ["jax", "flax", "octo"],
+    "octo": ["jax", "flax", "octo.model.octo_model"],  # PyPI's "octo" is another package
     "openvla": ["transformers", "timm"],
 }
 

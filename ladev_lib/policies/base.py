@@ -13,6 +13,7 @@ optionally, proprioception).
 from __future__ import annotations
 
 import abc
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -39,6 +40,14 @@ class PolicyInfo:
     """Control frequency the policy was trained at; None: the simulator's default."""
     max_episode_steps: int | None = None
     """Episode length it is evaluated with; None: the task's default."""
+    camera: str | None = None
+    """Name of the camera it was trained with (e.g. SimplerEnv's "overhead_camera"); None: any."""
+    max_episode_steps_by_task: Mapping[str, int] = field(default_factory=dict, hash=False)
+    """Per-task episode lengths (task name -> steps) overriding ``max_episode_steps``."""
+
+    def episode_steps_for(self, task: str) -> int | None:
+        """The episode length for ``task``: per task if given, else ``max_episode_steps``."""
+        return self.max_episode_steps_by_task.get(task, self.max_episode_steps)
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ Each object's footprint is its upright bounding box, rotated by its yaw: an
 oriented rectangle. Two footprints must be at least ``min_gap_m`` apart
 (separating-axis test on the rectangles grown by half the gap). Objects with
 a requested position keep it; the rest are drawn uniformly in the workspace
-by rejection sampling, largest first.
+(or in their requested region of it) by rejection sampling, largest first.
 """
 
 from __future__ import annotations
@@ -59,6 +59,9 @@ class PlacementRequest:
     x: float | None = None
     y: float | None = None
     yaw_deg: float | None = None
+    x_range: tuple[float, float] | None = None
+    """Where a free object may go (clipped to the workspace); None: anywhere."""
+    y_range: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -103,12 +106,20 @@ def place_objects(
         prints.append(fp)
 
     # Largest footprints first: they are the hardest to fit.
-    free.sort(key=lambda i: -requests[i].obj.size_m[0] * requests[i].obj.size_m[1])
+    # Objects confined to a region go before the others of the same size class.
+    free.sort(
+        key=lambda i: (
+            requests[i].x_range is None and requests[i].y_range is None,
+            -requests[i].obj.size_m[0] * requests[i].obj.size_m[1],
+        )
+    )
     for i in free:
         r = requests[i]
+        xr = _clip(r.x_range, workspace_x)
+        yr = _clip(r.y_range, workspace_y)
         for _ in range(max_tries):
-            x = float(rng.uniform(*workspace_x))
-            y = float(rng.uniform(*workspace_y))
+            x = float(rng.uniform(*xr))
+            y = float(rng.uniform(*yr))
             yaw = r.yaw_deg if r.yaw_deg is not None else float(rng.uniform(-180, 180))
             fp = footprint(r.obj, x, y, yaw, grow)
             if not any(overlaps(fp, other) for other in prints):
@@ -122,3 +133,14 @@ def place_objects(
                 f"{workspace_y[1] - workspace_y[0]:.2f} m workspace)"
             )
     return [placed[i] for i in range(len(requests))]
+
+
+def _clip(wanted: tuple[float, float] | None, bounds: tuple[float, float]) -> tuple[float, float]:
+    """``wanted`` inside ``bounds``; an empty intersection collapses to the nearest edge."""
+    if wanted is None:
+        return bounds
+    lo, hi = max(wanted[0], bounds[0]), min(wanted[1], bounds[1])
+    if lo > hi:
+        edge = bounds[0] if wanted[1] < bounds[0] else bounds[1]
+        return (edge, edge)
+    return (lo, hi)

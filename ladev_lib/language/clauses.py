@@ -1,0 +1,312 @@
+"""Split an instruction into clauses and read each one.
+
+A clause is a stretch of tokens between sentence ends, sequence words
+("then"), result words ("so that", "until") and conjunctions before a verb.
+Reading it finds its main verb, the object phrases outside any relation (the
+*bare* ones: what is acted on, whatever the word order), the relation words
+with the phrases they govern ("next to" + "the sponge"), negation, particles
+and hand-over recipients, and gives it a kind: pick, place, place without a
+destination, another task, a description, a topic, a preamble, or a manner
+constraint. :mod:`ladev_lib.language.parser` composes the clauses.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+from ladev_lib.language import lexicon as lx
+from ladev_lib.language.mentions import NameIndex
+from ladev_lib.language.tokens import Token, is_sentence_end
+
+TASK_OF_RELATION = {"near": "move_near", "on": "put_on", "in": "put_in"}
+PLACEMENT = frozenset(TASK_OF_RELATION)
+
+
+# -- clause structure -------------------------------------------------------------
+
+
+@dataclass
+class Ref:
+    """A phrase that refers to an object (a name, a head noun, or a pronoun)."""
+
+    text: str
+    object_id: str | None = None
+    problem: str | None = None
+    pronoun: bool = False
+    quantity: str | None = None
+    note: str | None = None
+
+
+@dataclass
+class Governed:
+    """A relation word and the phrases that complete it ("next to" + "the sponge")."""
+
+    relation: str
+    phrase: str
+    directional: bool
+    refs: list[Ref] = field(default_factory=list)
+    places: list[str] = field(default_factory=list)
+    """Completing phrases that are not objects ("the table", "your left")."""
+
+    @property
+    def dangling(self) -> bool:
+        return not self.refs and not self.places
+
+
+@dataclass
+class Clause:
+    tokens: list[Token]
+    intro: str | None
+    sentence: int
+    verb: Token | None = None
+    be: bool = False
+    desire: bool = False
+    negation: str | None = None
+    recipient: bool = False
+    alternatives: bool = False
+    repeat: str | None = None
+    unknown_verb: str | None = None
+    """An unlisted word in verb position after "and" / "then" (read as an action outside the tasks)."""
+    particles: list[str] = field(default_factory=list)
+    bare: list[Ref] = field(default_factory=list)
+    governed: list[Governed] = field(default_factory=list)
+    kind: str = "empty"
+
+    def refs(self) -> list[Ref]:
+        return [*self.bare, *(r for g in self.governed for r in g.refs)]
+
+    def placements(self) -> list[Governed]:
+        return [g for g in self.governed if g.relation in PLACEMENT]
+
+    def verb_text(self) -> str:
+        if self.verb is not None:
+            return self.verb.text
+        return self.unknown_verb or "(no verb)"
+
+
+def split_clauses(tokens: Sequence[Token]) -> list[Clause]:
+    clauses: list[Clause] = []
+    current: list[Token] = []
+    intro: str | None = None
+    sentence = 0
+
+    def flush(next_intro: str | None) -> None:
+        nonlocal current, intro
+        if current:
+            clause = Clause(current, intro, sentence)
+            if intro is not None and _unknown_verb_at(current, 0):
+                clause.unknown_verb = current[0].text
+            clauses.append(clause)
+        current, intro = [], next_intro
+
+    for i, tok in enumerate(tokens):
+        if is_sentence_end(tok):
+            flush(None)
+            sentence += 1
+        elif tok.kind == "SEQ":
+            flush(tok.text)
+        elif tok.kind == "RESULT":
+            flush("result")
+        elif tok.kind == "NEG" and tok.text == "without":
+            flush("without")
+        elif (tok.kind == "CONJ" or tok.text == ",") and _action_follows(tokens, i + 1):
+            flush(tok.text if tok.kind == "CONJ" else intro if not current else ",")
+        else:
+            current.append(tok)
+    flush(None)
+    return clauses
+
+
+def _action_follows(tokens: Sequence[Token], i: int) -> bool:
+    while i < len(tokens) and (
+        tokens[i].kind in ("ADV", "CONJ", "AUX", "MODAL", "PERSON") or tokens[i].text in lx.SKIPPABLE
+    ):
+        i += 1
+    return i < len(tokens) and (tokens[i].kind in ("VERB", "NEG", "SEQ") or _unknown_verb_at(tokens, i))
+
+
+def _unknown_verb_at(tokens: Sequence[Token], i: int) -> bool:
+    """An unlisted word right before an object phrase, after "and" / "then": "... and sing a song"."""
+    return (
+        i + 1 < len(tokens)
+        and tokens[i].kind == "WORD"
+        and (
+            tokens[i + 1].kind in ("DET", "PRON", "OBJ", "QUANT")
+            or (tokens[i + 1].kind == "PERSON" and tokens[i + 1].text in lx.RECIPIENTS)
+        )
+    )
+
+
+# -- reading one clause -----------------------------------------------------------
+
+
+class ClauseReader:
+    def __init__(self, index: NameIndex, scene: frozenset[str] | None) -> None:
+        self.index = index
+        self.scene = scene
+
+    def read(self, clause: Clause) -> Clause:
+        self._structure(clause)
+        clause.kind = self._kind(clause)
+        return clause
+
+    def _structure(self, c: Clause) -> None:
+        phrase: list[Token] = []
+        gov: Governed | None = None
+        saw_or = False
+        verbs: list[Token] = []
+
+        def close() -> None:
+            nonlocal phrase
+            if phrase:
+                refs, places = self._refs_of(phrase)
+                if gov is not None:
+                    gov.refs.extend(refs)
+                    gov.places.extend(places)
+                else:
+                    c.bare.extend(refs)
+            phrase = []
+
+        first = 1 if c.unknown_verb is not None else 0
+        for j, tok in enumerate(c.tokens):
+            if j < first:
+                continue
+            if tok.text in lx.DESIRE:
+                c.desire = True
+            if tok.kind in ("OBJ", "PRON", "DET", "QUANT", "WORD"):
+                phrase.append(tok)
+                continue
+            close()
+            if tok.kind == "REL":
+                gov = Governed(tok.relation or "other", tok.text, tok.directional)
+                c.governed.append(gov)
+            elif tok.kind in ("VERB", "BE", "MODAL", "NEG"):
+                gov = None
+                if tok.kind == "VERB":
+                    verbs.append(tok)
+                    nxt = c.tokens[j + 1] if j + 1 < len(c.tokens) else None
+                    if nxt is not None and nxt.kind == "PERSON" and nxt.text in lx.RECIPIENTS:
+                        c.recipient = True
+                elif tok.kind == "BE":
+                    c.be = True
+                elif tok.kind == "NEG" and c.negation is None:
+                    c.negation = tok.text
+            elif tok.kind == "PART":
+                c.particles.append(tok.text)
+            elif tok.kind == "REPEAT":
+                c.repeat = tok.text
+            elif tok.kind == "CONJ" and tok.text in ("or", "either"):
+                saw_or = True
+        close()
+        c.verb = _main_verb(verbs)
+        c.alternatives = saw_or and len({r.object_id or r.text for r in c.refs()}) > 1
+        _with_as_source(c)
+
+    def _refs_of(self, phrase: list[Token]) -> tuple[list[Ref], list[str]]:
+        """The object references in one noun phrase, and its text if it names a place instead."""
+        text = " ".join(t.text for t in phrase if t.kind != "DET")
+        quantity = next((t.text for t in phrase if t.kind == "QUANT"), None)
+        if any(t.kind == "PRON" for t in phrase):
+            pron = next(t for t in phrase if t.kind == "PRON")
+            problem = f"'{pron.text}' means more than one object" if pron.text in lx.PLURAL_PRONOUNS else None
+            return [Ref(pron.text, pronoun=problem is None, problem=problem)], []
+        content = [t for t in phrase if t.kind in ("OBJ", "WORD")]
+        heads = [
+            k for k, t in enumerate(content)
+            if t.kind == "OBJ" and not self._is_modifier(content, k)
+        ]
+        refs: list[Ref] = []
+        if heads:
+            start = 0
+            for k in heads:
+                words = [w for t in content[start : k + 1] for w in t.text.split()]
+                obj = content[k]
+                assert obj.object_id is not None
+                resolved = self.index.prefer_scene(obj.object_id, words, self.scene, obj.text)
+                refs.append(Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note))
+                start = k + 1
+            return refs, []
+        words = [w for t in content for w in t.text.split()]
+        if "of" in words[:-1]:
+            words = words[len(words) - words[::-1].index("of") :]  # "can of coca cola" -> "coca cola"
+        if not words:
+            return [], [text] if text else []
+        found = self.index.resolve_head(words, self.scene, text)
+        if found is None:
+            return [], [text]
+        return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note)], []
+
+    def _is_modifier(self, content: list[Token], k: int) -> bool:
+        """A name used as a modifier: "the coke label", "orange soda"."""
+        if k + 1 >= len(content):
+            return False
+        nxt = content[k + 1]
+        if nxt.kind == "OBJ":
+            return True
+        return nxt.text in lx.PART_NOUNS or self.index.is_object_noun(nxt.text)
+
+    def _kind(self, c: Clause) -> str:
+        if c.intro == "without":
+            return "manner"
+        kind = self._action_kind(c)
+        negated_manner = c.verb is not None and c.verb.lemma in lx.MANNER_VERBS
+        if c.negation and kind in ("place_nodest", "other") and negated_manner:
+            return "manner"  # "don't drop it": how to do the task, not which task
+        if c.negation and kind in ("topic", "describe", "empty", "preamble"):
+            return "manner"  # "so it doesn't fall": negates no action of the four tasks
+        return kind
+
+    def _action_kind(self, c: Clause) -> str:
+        has_ref = bool(c.bare)
+        object_places = [g for g in c.placements() if g.refs]
+        reverse = [g for g in c.governed if g.relation == "reverse" and g.refs]
+        reverse_particle = any(p in lx.REVERSE_PARTICLES for p in c.particles)
+        verb = c.verb
+        if verb is None and c.unknown_verb is not None:
+            return "other"
+        if verb is None:
+            if c.be and not (c.desire or c.intro == "result"):
+                return "describe"
+            if c.placements():
+                return "place"
+            return "topic" if c.refs() else "empty"
+        cls = verb.verb_class
+        if cls in ("pick", "place") and c.recipient:
+            return "other"
+        if cls == "pick":
+            if reverse or (reverse_particle and not object_places):
+                return "other"
+            if any(g.directional or verb.lemma in lx.PICK_PLACES_WITH_STATIVE for g in object_places):
+                return "place"
+            return "pick"
+        if cls == "place":
+            if not has_ref and verb.lemma in lx.SELF_MOTION:
+                return "preamble"
+            if reverse and not c.placements():
+                return "other"
+            other_relations = [g for g in c.governed if g.relation == "other" and g.refs]
+            if c.placements() or other_relations:
+                return "place"  # "behind the bottle" too: _placement_task names the relation
+            if reverse_particle:
+                return "other"
+            return "place_nodest"
+        return cls or "other"
+
+
+def _main_verb(verbs: list[Token]) -> Token | None:
+    for classes in (("pick", "place", "other"), ("release",), ("preamble",)):
+        for v in verbs:
+            if v.verb_class in classes:
+                return v
+    return None
+
+
+def _with_as_source(c: Clause) -> None:
+    """ "into the basket with the eggplant": the object after "with" is the one to move."""
+    if c.bare or not c.placements():
+        return
+    for g in c.governed:
+        if g.phrase == "with" and len(g.refs) == 1:
+            c.bare.append(g.refs.pop())
+            return

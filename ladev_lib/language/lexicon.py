@@ -1,0 +1,303 @@
+"""The words the instruction parser knows: verbs by role, relations, frames.
+
+Only words that decide a task's structure are listed. Everything else in an
+instruction (politeness, hedges, adverbs, "robot", "real quick") is noise to
+the parser, so a new filler word never breaks a parse; a new *verb* does (an
+unknown verb reads as no task, which rejects a candidate rather than
+accepting a wrong one).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+# -- verbs ---------------------------------------------------------------------
+# Classes:
+#   pick      grasp and lift ("pick up", "grab"); with a directional relation
+#             to an object they place instead ("take the apple to the sponge").
+#   place     move the object somewhere; need a destination ("put", "slide").
+#   other     a task outside the four ("knock over", "hand me", "peel").
+#   preamble  perception / approach before the task ("find", "reach for").
+#   release   let go after placing ("release").
+# Verbs that are harmless when negated ("don't drop it", "don't squeeze it")
+# are in MANNER_VERBS: a negated manner verb without a destination is a
+# constraint on how to do the task, not a negation of the task.
+
+_PICK = "pick lift grab grasp take get raise hoist seize snatch collect pluck scoop hold fetch retrieve snag nab grip clutch obtain acquire"
+_PLACE = (
+    "put place set lay rest drop lower position move bring slide push shove nudge shift drag carry "
+    "transfer relocate reposition stack stick pop toss throw chuck insert deposit tuck stash load "
+    "dump sit stand park leave roll go end belong plop slip return transport"
+)
+_OTHER = (
+    "knock tip topple open close shake squeeze eat peel point touch tap poke hit kick spin rotate "
+    "turn flip wipe clean wash wrap cover hand give pass show write cut pour fill empty crush break "
+    "smash remove unstack unload tilt stir bite lick smell juggle balance bounce play"
+)
+_PREAMBLE = "find locate look spot identify see notice reach approach head use watch check"
+_RELEASE = "release"
+
+MANNER_VERBS: frozenset[str] = frozenset(
+    ["drop", "spill", "squeeze", "crush", "break", "damage", "knock", "bump", "hit", "touch", "hurt", "rush", "tip", "topple", "shake", "bang", "dent", "scratch", "lose", "smash", "disturb", "move"]
+)
+
+# Irregular forms (base -> extra forms). "left" is deliberately not a form of
+# "leave": in instructions it is nearly always a direction.
+_IRREGULAR: dict[str, tuple[str, ...]] = {
+    "take": ("took", "taken"),
+    "hold": ("held",),
+    "lay": ("laid",),
+    "bring": ("brought",),
+    "slide": ("slid",),
+    "stick": ("stuck",),
+    "throw": ("threw", "thrown"),
+    "sit": ("sat",),
+    "stand": ("stood",),
+    "go": ("went", "gone", "goes"),
+    "get": ("got", "gotten"),
+    "seize": (),
+    "give": ("gave", "given"),
+    "eat": ("ate", "eaten"),
+    "break": ("broke", "broken"),
+    "see": ("saw", "seen"),
+    "find": ("found",),
+    "spin": ("spun",),
+    "write": ("wrote", "written"),
+    "shake": ("shook", "shaken"),
+    "bite": ("bit", "bitten"),
+    "lose": ("lost",),
+    "hit": (),
+    "cut": (),
+    "put": (),
+    "set": (),
+}
+# One-syllable verbs whose final consonant doubles before -ing / -ed.
+_DOUBLING = frozenset(
+    ["grab", "drop", "pop", "set", "put", "get", "sit", "snag", "nab", "drag", "slip", "tap", "stop", "plop", "flip", "hit", "stir", "grip", "cut", "spin", "tip", "dump", "nab", "chop", "knock"]
+) - {"knock", "dump"}
+
+
+def _forms(base: str) -> set[str]:
+    forms = {base}
+    if base.endswith(("s", "sh", "ch", "x", "z")):
+        forms.add(base + "es")
+    elif base.endswith("y") and base[-2] not in "aeiou":
+        forms.add(base[:-1] + "ies")
+    else:
+        forms.add(base + "s")
+    if base in _DOUBLING:
+        stem = base + base[-1]
+    elif base.endswith("e") and not base.endswith("ee"):
+        stem = base[:-1]
+    else:
+        stem = base
+    forms.add(stem + "ing")
+    if base.endswith("y") and base[-2] not in "aeiou":
+        forms.add(base[:-1] + "ied")
+    elif base.endswith("e"):
+        forms.add(base + "d")
+    else:
+        forms.add(stem + "ed")
+    forms.update(_IRREGULAR.get(base, ()))
+    return forms
+
+
+def _verb_table(classes: Iterable[tuple[str, str]]) -> dict[str, tuple[str, str]]:
+    table: dict[str, tuple[str, str]] = {}
+    for cls, words in classes:
+        for base in words.split():
+            for form in _forms(base):
+                table.setdefault(form, (cls, base))
+    return table
+
+
+VERBS: dict[str, tuple[str, str]] = _verb_table(
+    [("pick", _PICK), ("place", _PLACE), ("release", _RELEASE), ("other", _OTHER), ("preamble", _PREAMBLE)]
+)
+"""Inflected form -> (class, lemma). A word in two classes keeps the first listed."""
+
+# Verbs of the pick class that place when given any relation to an object
+# ("get the carrot on the plate"), not only a directional one.
+PICK_PLACES_WITH_STATIVE = frozenset({"get"})
+# Verbs that move the *robot*, not an object, when the clause has no object.
+SELF_MOTION = frozenset({"go", "head", "reach", "approach", "move", "come"})
+
+# Multi-word verbs, matched on any inflection of their first word ("taking hold
+# of" too): the words after the verb are dropped, and the verb is replaced by
+# the given word, or kept (None).
+PHRASAL_VERBS: dict[tuple[str, ...], str | None] = {
+    ("take", "hold", "of"): None,
+    ("get", "hold", "of"): None,
+    ("grab", "hold", "of"): None,
+    ("catch", "hold", "of"): "grasp",
+    ("lay", "hold", "of"): "grasp",
+    ("let", "go", "of"): "release",
+    ("let", "go"): "release",
+    ("let", "it", "go"): "release",
+    ("knock", "over"): None,
+    ("look", "at"): None,
+    ("look", "for"): None,
+    ("reach", "for"): None,
+    ("end", "up"): None,
+    ("hand", "over"): None,
+}
+
+# -- relations -----------------------------------------------------------------
+# kind: near | on | in (the tasks' relations), other:<word> (a relation that is
+# none of them: "behind", "under"), reverse:<word> (taking away: "off", "out of").
+RELATIONS: dict[tuple[str, ...], str] = {}
+
+
+def _add_relations(kind: str, phrases: str) -> None:
+    for phrase in phrases.split(","):
+        RELATIONS[tuple(phrase.split())] = kind
+
+
+_add_relations(
+    "near",
+    "near,nearby,near to,nearer to,next to,right next to,close to,closer to,close by,beside,besides,"
+    "by,by the side of,alongside,adjacent to,up to,over to,over by,right by,toward,towards,to,"
+    "in the vicinity of,in proximity to,in the proximity of,at the side of,next door to,"
+    "in the direction of",
+)
+_add_relations("on", "on,onto,on to,on top of,on the top of,upon,atop,over onto")
+_add_relations("in", "in,into,in to,inside,inside of,within,down into")
+_add_relations(
+    "other",
+    "in front of,to the left of,to the right of,left of,right of,on the left of,on the right of,"
+    "on the left side of,on the right side of,behind,under,underneath,beneath,below,above,over,"
+    "around,between,across,against,at,through,with,of,for,opposite,in back of,along",
+)
+_add_relations("reverse", "away from,far from,far away from,out of,off of,off,from,out,away")
+RELATION_MAX_LEN = max(len(k) for k in RELATIONS)
+
+DIRECTIONAL = frozenset(
+    {("onto",), ("on", "to"), ("into",), ("in", "to"), ("to",), ("toward",), ("towards",),
+     ("over", "to"), ("up", "to"), ("over", "onto"), ("down", "into")}
+)
+
+PARTICLES = frozenset({"up", "down", "over", "back", "away", "out", "off", "around", "aside"})
+"""Verb particles: a particle followed by no object is not a relation ("put it down")."""
+REVERSE_PARTICLES = frozenset({"away", "out", "off", "aside"})
+
+# -- function words ------------------------------------------------------------
+DETERMINERS = frozenset(["the", "a", "an", "that", "this", "these", "those", "your", "my", "our", "his", "her", "their", "its", "some", "any"])
+PRONOUNS = frozenset({"it", "that", "this", "them"})
+"""Words that stand for an object already mentioned ("pick it up")."""
+PLURAL_PRONOUNS = frozenset({"them", "these", "those"})
+RELATIVE_PRONOUNS = frozenset({"that", "which", "who"})
+CONTAINER_NOUNS = frozenset(
+    {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair"}
+)
+"""Nouns in "a can of X": X names the object."""
+RECIPIENTS = frozenset({"me", "us", "him", "her"})
+"""After an action verb these make it a hand-over ("bring me the can")."""
+QUANTIFIERS = frozenset(
+    ["all", "every", "each", "both", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "several", "many", "multiple"]
+)
+NEGATIONS = frozenset(
+    {"not", "never", "avoid", "avoiding", "refrain", "refraining", "no", "without", "nor", "nobody",
+     "neither", "forget", "stop", "stopping", "quit", "cease"}
+)
+COPULAS = frozenset(["is", "are", "be", "being", "been", "was", "were", "am"])
+AUXILIARIES = frozenset(["do", "does", "did"])
+REPETITION = frozenset(["twice", "thrice", "repeatedly", "times"])
+"""Words that ask for the task more than once."""
+MODALS = frozenset(["can", "could", "would", "will", "shall", "should", "must", "might", "may"])
+DESIRE = frozenset(
+    ["should", "must", "need", "needs", "want", "wants", "like", "ought", "supposed", "has", "have", "needed", "wanted", "would"]
+)
+"""Words that turn a state ("the carrot is on the plate") into a goal ("... should be ...")."""
+
+CONJUNCTIONS = frozenset({"and", "or", "but", "plus", "either"})
+SEQUENCE = (
+    ("and", "then"), ("and", "afterwards"), ("and", "after", "that"), ("after", "that"),
+    ("then",), ("afterwards",), ("afterward",), ("finally",), ("before",),
+    ("after",), ("once",), ("later",), ("subsequently",),
+)
+RESULT = (("so", "that"), ("such", "that"), ("so",), ("until",), ("till",), ("in", "order", "that"))
+SKIPPABLE = frozenset(
+    ["please", "kindly", "just", "also", "now", "then", "carefully", "gently", "slowly", "quickly", "first", "simply", "immediately", "really", "try", "to"]
+)
+"""Words that may stand between a conjunction and the verb that starts a clause."""
+
+# Word sequences that look like negation but are not ("why don't you ...").
+NEGATION_NEUTRALIZERS: tuple[tuple[str, ...], ...] = (
+    ("why", "do", "not", "you"),
+    ("why", "not"),
+    ("can", "not", "you"),
+    ("could", "not", "you"),
+    ("will", "not", "you"),
+    ("would", "not", "you"),
+    ("do", "not", "forget", "to"),
+    ("never", "forget", "to"),
+    ("do", "not", "hesitate", "to"),
+    ("not", "only"),
+    ("no", "problem"),
+    ("if", "not"),
+)
+
+LOCATION_NOUNS = frozenset(
+    ["table", "tabletop", "counter", "countertop", "desk", "surface", "floor", "ground", "shelf", "workspace", "left", "right", "side", "front", "back", "middle", "center", "centre", "corner", "edge", "top", "bottom", "spot", "area", "place", "there", "here", "gripper", "hand", "hands", "arm", "claw", "fingers", "finger", "robot", "camera", "view", "you", "me", "us", "somewhere", "anywhere", "elsewhere", "down", "way"]
+)
+"""Nouns that name a place or the robot, never a task object."""
+
+GENERIC_HEADS = frozenset({"object", "thing", "item", "one", "stuff"})
+"""Head nouns that can stand for any object."""
+
+HYPERNYMS: dict[str, tuple[str, ...]] = {
+    "fruit": ("category:fruit",),
+    "fruits": ("category:fruit",),
+    "vegetable": ("category:vegetable",),
+    "veggie": ("category:vegetable",),
+    "veg": ("category:vegetable",),
+    "soda": ("set:simpler&category:can",),
+    "drink": ("set:simpler&category:can",),
+    "beverage": ("set:simpler&category:can",),
+    "container": ("category:container",),
+    "utensil": ("category:utensil",),
+    "block": ("category:block",),
+    "ball": ("category:ball",),
+    "cup": ("category:cup",),
+    "toy": ("category:toy",),
+    "tool": ("category:tool",),
+}
+"""Generic nouns and the catalog groups they can stand for."""
+
+PART_NOUNS = frozenset(
+    ["slice", "slices", "piece", "pieces", "peel", "juice", "seed", "seeds", "stem", "leaf", "label", "cap", "handle", "half", "bag", "bunch", "pile", "stack", "wrapper", "box", "bottle", "can", "cans"]
+)
+"""Nouns after an object name that make the name a modifier ("the coke label")."""
+
+COLOR_WORDS = frozenset(
+    ["red", "green", "blue", "yellow", "orange", "purple", "pink", "white", "black", "brown", "grey", "gray", "violet", "light", "dark"]
+)
+SIZE_WORDS = frozenset(["small", "large", "big", "little", "mini", "tiny", "huge", "extra"])
+
+PERSONS = frozenset(["you", "i", "we", "me", "us", "he", "she", "they", "him", "yourself"])
+"""Personal pronouns: never objects ("could you", "for me")."""
+ADVERBS = frozenset(
+    ["again", "too", "also", "well", "please", "thanks", "thank", "kindly", "just", "now", "then", "here", "there", "right", "quick", "fast", "asap", "soon", "ok", "okay", "hey", "yo", "hi", "hello", "sure", "maybe", "perhaps", "first", "next", "finally", "already", "still", "very", "real", "really", "gonna", "up", "down", "away"]
+)
+"""Words that never belong to a noun phrase (besides any word ending in -ly)."""
+NOISE_PHRASES: tuple[tuple[str, ...], ...] = (
+    ("go", "ahead", "and"),
+    ("go", "ahead"),
+    ("as", "well"),
+    ("thank", "you"),
+    ("if", "you", "can"),
+    ("if", "you", "could"),
+    ("if", "possible"),
+    ("when", "you", "are", "ready"),
+    ("right", "away"),
+    ("right", "now"),
+    ("in", "one", "go"),
+    ("in", "a", "moment"),
+    ("for", "me"),
+    ("for", "us"),
+    ("be", "so", "kind", "as", "to"),
+    ("do", "me", "a", "favor", "and"),
+    ("do", "me", "a", "favour", "and"),
+    ("in", "front", "of", "you"),
+)
+"""Fixed phrases removed before tagging (they would otherwise look like verbs or relations)."""

@@ -1,0 +1,368 @@
+"""Read an instruction back into (task, source, target), or say why it cannot be.
+
+    parse_instruction("could you set the orange carrot on the dish?")
+    -> InstructionParse(task="put_on", source="carrot", target="plate", reason=None)
+    parse_instruction("pick up the coke can and then put it down")
+    -> InstructionParse(task="pick_up", source="coke_can", reason="extra step: 'put' ...")
+
+The grammar is small and explicit. Objects are catalog names or synonyms (or,
+in a known scene, a head noun that fits one scene object: "the can"). An
+instruction is split into clauses at sentence ends, sequence words ("then"),
+result words ("so that", "until") and conjunctions before a verb. Each clause
+gets a reading (pick, place, place without destination, another task, a
+description, a topic, a preamble); the relation word decides the placement
+task (near / on / in) and which object is the target; the object outside any
+relation is the source, whatever the word order ("on the plate, put the
+carrot"). Clauses then compose: "pick up X and put it on Y" is one placement;
+anything else that adds an action is an extra step. Negation, extra or
+alternative objects, plural or ambiguous names, missing destinations, and
+relations outside the four tasks all give a ``reason`` instead of an exception.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+from ladev_lib.catalog import Catalog, load_catalog
+from ladev_lib.catalog.catalog import normalize_name
+from ladev_lib.language.clauses import (
+    PLACEMENT,
+    TASK_OF_RELATION,
+    Clause,
+    ClauseReader,
+    Governed,
+    Ref,
+    split_clauses,
+)
+from ladev_lib.language.mentions import name_index
+from ladev_lib.language.tokens import tag_tokens
+
+_ACTIONS = frozenset({"pick", "place", "place_nodest", "other", "release"})
+
+
+@dataclass(frozen=True)
+class InstructionParse:
+    """What an instruction asks for, as far as it can be read."""
+
+    text: str
+    task: str | None
+    source: str | None
+    """Catalog id of the object to manipulate."""
+    target: str | None
+    """Catalog id of the reference object (move_near, put_on, put_in)."""
+    reason: str | None = None
+    """Why the instruction does not state one task of the four clearly; None when it does."""
+    notes: tuple[str, ...] = ()
+    """How names were resolved when not by an exact catalog name."""
+
+    @property
+    def ok(self) -> bool:
+        return self.reason is None
+
+    @property
+    def roles(self) -> tuple[str | None, str | None, str | None]:
+        return (self.task, self.source, self.target)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "task": self.task,
+            "source": self.source,
+            "target": self.target,
+            "reason": self.reason,
+            "notes": list(self.notes),
+        }
+
+
+# -- composing clauses ------------------------------------------------------------
+
+
+@dataclass
+class _Action:
+    kind: str
+    clauses: list[Clause]
+
+    @property
+    def verb(self) -> str:
+        return self.clauses[-1].verb_text()
+
+    def bare(self) -> list[Ref]:
+        return [r for c in self.clauses for r in c.bare]
+
+    def governed(self) -> list[Governed]:
+        return [g for c in self.clauses for g in c.governed]
+
+
+def _resolve_pronouns(clauses: list[Clause]) -> None:
+    focus: str | None = None
+    pending: list[Ref] = []
+    for c in clauses:
+        for ref in c.bare:
+            if ref.pronoun:
+                if focus is not None:
+                    ref.object_id = focus
+                else:
+                    pending.append(ref)
+            elif ref.object_id is not None:
+                focus = ref.object_id
+        for g in c.governed:
+            for ref in g.refs:
+                if ref.pronoun:
+                    ref.object_id = focus
+                    if focus is None:
+                        pending.append(ref)
+    later = next((r.object_id for c in clauses for r in c.bare if not r.pronoun and r.object_id), None)
+    for ref in pending:
+        ref.object_id = later
+        if later is None:
+            ref.problem = f"'{ref.text}' refers to no object named in the instruction"
+
+
+def _mark_topics(clauses: list[Clause]) -> None:
+    """ "the banana on the table, lift it": a verbless phrase taken up by a later pronoun."""
+    for k, c in enumerate(clauses):
+        taken_up = any(r.pronoun for later in clauses[k + 1 :] for r in later.bare)
+        if c.verb is None and c.bare and c.kind == "place" and taken_up:
+            c.kind = "topic"
+
+
+def _same_object(a: _Action, b: _Action) -> bool:
+    ids_a = {r.object_id for r in a.bare()}
+    ids_b = {r.object_id for r in b.bare()}
+    return bool(ids_a) and (ids_a == ids_b or not ids_b)
+
+
+def _merge(actions: list[_Action]) -> list[_Action]:
+    """Collapse sequences that state one task: pick X + put X on Y, move X + so it is near Y."""
+    out: list[_Action] = []
+    for act in actions:
+        prev = out[-1] if out else None
+        if prev is not None:
+            merged = _merge_pair(prev, act)
+            if merged is not None:
+                out[-1] = merged
+                continue
+        out.append(act)
+    return out
+
+
+def _merge_pair(a: _Action, b: _Action) -> _Action | None:
+    both = [*a.clauses, *b.clauses]
+    fronted_a = a.kind == "place" and not a.bare() and all(c.verb is None for c in a.clauses)
+    fronted_b = b.kind == "place" and not b.bare() and all(c.verb is None for c in b.clauses)
+    if fronted_a and b.kind == "place_nodest":
+        return _Action("place", both)
+    if a.kind == "place_nodest" and fronted_b:
+        return _Action("place", both)
+    if not _same_object(a, b):
+        return None
+    if a.kind == "pick" and b.kind in ("place", "pick"):
+        return _Action(b.kind, both)
+    reordered = any((c.intro or "") in ("after", "before", "once") for c in both)
+    if reordered and {a.kind, b.kind} == {"pick", "place"}:
+        return _Action("place", both)  # "put it on the plate after picking up the carrot"
+    if a.kind == "place_nodest" and b.kind == "place":
+        return _Action("place", both)
+    if a.kind == "place" and b.kind == "release":
+        return _Action("place", both)
+    leaves = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma == "leave"
+    if a.kind == "place" and leaves:
+        return _Action("place", both)  # "... and leave it there"
+    return None
+
+
+class _Composer:
+    def __init__(self, text: str, clauses: list[Clause]) -> None:
+        self.text = text
+        self.clauses = clauses
+        self.reasons: list[str] = []
+
+    def compose(self) -> InstructionParse:
+        _mark_topics(self.clauses)
+        _resolve_pronouns(self.clauses)
+        negated = [c for c in self.clauses if c.negation and c.kind != "manner"]
+        positive = [
+            _Action(c.kind, [c])
+            for c in self.clauses
+            if not c.negation and (c.kind in _ACTIONS or (c.kind == "place" and c.verb is None))
+        ]
+        actions = _merge(positive)
+        task, source, target = None, None, None
+        main: _Action | None = None
+        if not actions:
+            if negated:
+                self.reasons.append(f"negated: '{negated[0].negation} {negated[0].verb_text()}'")
+            else:
+                self.reasons.append("no task verb found")
+        else:
+            if len(actions) > 1:
+                extra = ", ".join(f"'{a.verb}'" for a in actions[1:])
+                word = "alternative action" if any(c.intro == "or" for a in actions for c in a.clauses) else "extra step"
+                self.reasons.append(f"{word}: {extra} after '{actions[0].verb}'")
+            main = actions[0]
+            task, source, target = self._roles(main)
+        if source is not None and source == target:
+            self.reasons.append(f"the same object is source and destination: {source}")
+        repeat = next((c.repeat for c in self.clauses if c.repeat), None)
+        if repeat:
+            self.reasons.append(f"'{repeat}' asks for the task more than once")
+        self._check_negations(negated, source)
+        self._check_mentions(main, negated, source, target)
+        notes = tuple(r.note for c in self.clauses for r in c.refs() if r.note)
+        reason = "; ".join(dict.fromkeys(self.reasons)) or None
+        return InstructionParse(self.text, task, source, target, reason, notes)
+
+    def _roles(self, act: _Action) -> tuple[str | None, str | None, str | None]:
+        task: str | None = None
+        if act.kind == "pick":
+            task = "pick_up"
+        elif act.kind == "place":
+            task = self._placement_task(act)
+        elif act.kind == "place_nodest":
+            self.reasons.append(f"'{act.verb}' without a destination")
+        elif act.kind == "release":
+            self.reasons.append(f"'{act.verb}' is not one of the tasks")
+        else:
+            clause = act.clauses[-1]
+            if clause.recipient:
+                self.reasons.append(f"'{act.verb}' hands the object to a person")
+            elif any(g.relation == "reverse" for g in clause.governed) or clause.particles:
+                self.reasons.append(f"'{act.verb} ... {_reverse_word(clause)}' takes the object away")
+            else:
+                self.reasons.append(f"'{act.verb}' is not one of the tasks")
+        source = self._one(act.bare(), "object to act on", required=True)
+        target = None
+        if task in TASK_OF_RELATION.values():
+            refs = [r for g in act.governed() if g.relation in PLACEMENT for r in g.refs]
+            target = self._one(refs, "destination", required=True)
+        return task, source, target
+
+    def _placement_task(self, act: _Action) -> str | None:
+        places = [g for g in act.governed() if g.relation in PLACEMENT]
+        with_objects = [g for g in places if g.refs]
+        if with_objects:
+            kinds = {g.relation for g in with_objects}
+            if len(kinds) > 1:
+                self.reasons.append("more than one relation: " + ", ".join(sorted(kinds)))
+            return TASK_OF_RELATION[with_objects[0].relation]
+        if places and places[0].places:
+            self.reasons.append(f"destination '{places[0].places[0]}' is not an object")
+        elif places:
+            self.reasons.append(f"no destination object after '{places[0].phrase}'")
+        others = [g for g in act.governed() if g.relation == "other" and g.refs]
+        if others:
+            self.reasons.append(f"relation '{others[0].phrase}' is none of near / on / in")
+        return TASK_OF_RELATION[places[0].relation] if places else None
+
+    def _one(self, refs: list[Ref], role: str, required: bool) -> str | None:
+        for r in refs:
+            if r.problem:
+                self.reasons.append(r.problem)
+            if r.quantity:
+                self.reasons.append(f"'{r.text}' asks for a quantity")
+        ids = list(dict.fromkeys(r.object_id for r in refs if r.object_id))
+        if len(ids) > 1:
+            self.reasons.append(f"more than one {role}: {', '.join(ids)}")
+        if not ids and required and not any(r.problem for r in refs):
+            self.reasons.append(f"no {role} named")
+        return ids[0] if ids else None
+
+    def _check_negations(self, negated: list[Clause], source: str | None) -> None:
+        for c in negated:
+            ids = {r.object_id for r in c.refs() if r.object_id}
+            if source is not None and source not in ids and ids:
+                continue  # an exclusion: "pick up the coke can, not the pepsi can"
+            if source is not None:
+                self.reasons.append(f"negated: '{c.negation} {c.verb_text()}'")
+
+    def _check_mentions(
+        self, main: _Action | None, negated: list[Clause], source: str | None, target: str | None
+    ) -> None:
+        in_main = {id(c) for c in main.clauses} if main else set()
+        excluded = {id(c) for c in negated}
+        for c in self.clauses:
+            if c.kind == "manner" or id(c) in excluded:
+                continue
+            if c.alternatives:
+                self.reasons.append("alternative objects ('or')")
+            for r in c.refs():
+                if id(c) not in in_main and r.problem:
+                    self.reasons.append(r.problem)
+                if r.object_id and r.object_id not in (source, target):
+                    self.reasons.append(f"mentions another object: {r.object_id}")
+
+
+def _reverse_word(clause: Clause) -> str:
+    for g in clause.governed:
+        if g.relation == "reverse":
+            return g.phrase
+    return clause.particles[0] if clause.particles else ""
+
+
+# -- entry point ----------------------------------------------------------------
+
+
+class InstructionParser:
+    """Parses instructions against a catalog (and optionally one scene's objects)."""
+
+    def __init__(self, catalog: Catalog | None = None) -> None:
+        self.catalog = catalog or load_catalog()
+        self.index = name_index(self.catalog)
+
+    def parse(self, text: str, scene_objects: Iterable[str] | None = None) -> InstructionParse:
+        scene = frozenset(scene_objects) if scene_objects else None
+        if not text or not text.strip():
+            return InstructionParse(text, None, None, None, "empty instruction")
+        tokens = tag_tokens(text, self.index)
+        reader = ClauseReader(self.index, scene)
+        clauses = [reader.read(c) for c in split_clauses(tokens)]
+        if not clauses:
+            return InstructionParse(text, None, None, None, "no words to read")
+        return _Composer(text, clauses).compose()
+
+    def canonical_text(self, text: str) -> str:
+        """The instruction with every object name replaced by its display name.
+
+        Only the names change; the rest of the text is kept as written, so an
+        instruction that already uses display names comes back unchanged.
+        """
+        out, pos = [], 0
+        for tok in tag_tokens(text, self.index):
+            if tok.kind != "OBJ" or tok.object_id is None:
+                continue
+            display = self.index.display_name(tok.object_id)
+            if normalize_name(display) == tok.text:
+                continue
+            found = _surface_pattern(tok.text).search(text, pos)
+            if found is None:
+                continue  # the name's surface form could not be located; leave it
+            out.append(text[pos : found.start()])
+            out.append(display)
+            pos = found.end()
+        out.append(text[pos:])
+        return "".join(out)
+
+
+@functools.lru_cache(maxsize=1024)
+def _surface_pattern(normalized: str) -> re.Pattern[str]:
+    """Matches a normalised name as written: any case, hyphens or spaces, apostrophes."""
+    words = ["'?".join(re.escape(ch) for ch in word) for word in normalized.split()]
+    return re.compile(r"(?<![a-z0-9])" + r"[\s\-_/]+".join(words) + r"(?![a-z0-9])", re.IGNORECASE)
+
+
+_DEFAULT: dict[int, InstructionParser] = {}
+
+
+def parse_instruction(
+    text: str, scene_objects: Iterable[str] | None = None, catalog: Catalog | None = None
+) -> InstructionParse:
+    """Parse one instruction (parser cached per catalog)."""
+    cat = catalog or load_catalog()
+    parser = _DEFAULT.get(id(cat))
+    if parser is None or parser.catalog is not cat:
+        parser = InstructionParser(cat)
+        _DEFAULT[id(cat)] = parser
+    return parser.parse(text, scene_objects)

@@ -1,0 +1,240 @@
+"""Tokenise an instruction and tag each token with its role for the parser.
+
+    tag_tokens("Could you put the can of coke onto the dish?", index)
+    -> MODAL PERSON VERB(place:put) DET OBJ(coke_can) REL(on:onto) DET OBJ(plate) PUNCT
+
+Catalog names are matched first (longest first, on the same normalisation as
+the catalog's), so a name that contains a function word ("cup with a
+handle", "seven up can") stays one object.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from ladev_lib.language import lexicon as lx
+from ladev_lib.language.mentions import NameIndex
+
+Kind = str
+# OBJ PRON RELPRON DET QUANT REL VERB NEG BE AUX MODAL PART CONJ SEQ RESULT PUNCT PERSON ADV REPEAT WORD
+
+
+@dataclass(frozen=True)
+class Token:
+    kind: Kind
+    text: str
+    object_id: str | None = None
+    relation: str | None = None
+    """near | on | in | other | reverse (REL tokens)."""
+    directional: bool = False
+    verb_class: str | None = None
+    lemma: str | None = None
+
+
+_CONTRACTIONS: tuple[tuple[str, str], ...] = (
+    (r"\bwon't\b", "will not"),
+    (r"\bcan't\b", "can not"),
+    (r"\bcannot\b", "can not"),
+    (r"\bshan't\b", "shall not"),
+    (r"\b(\w+)n't\b", r"\1 not"),
+    (r"\bdont\b", "do not"),
+    (r"\blet's\b", "let us"),
+    (r"\b(it|that|there|here|what|who|where)'s\b", r"\1 is"),
+    (r"'re\b", " are"),
+    (r"'m\b", " am"),
+    (r"'ll\b", " will"),
+    (r"'d\b", " would"),
+    (r"'ve\b", " have"),
+    (r"\bgimme\b", "give me"),
+    (r"\bwanna\b", "want to"),
+    (r"\bgotta\b", "got to"),
+    (r"\bpl[sz]\b", "please"),
+    (r"\bthx\b", "thanks"),
+)
+_PUNCT = frozenset(",.;:!?")
+_SENTENCE_END = frozenset(".;:!?")
+
+
+def words_of(text: str) -> list[str]:
+    """Lower-case words and punctuation, contractions expanded, names normalised like the catalog's."""
+    t = text.lower().replace("\u2019", "'").replace("\u2018", "'").replace("`", "'")
+    t = re.sub(r"\s+[-\u2013\u2014]+\s+|[\u2013\u2014]", " , ", t)  # a dash between words is a pause
+    for pattern, repl in _CONTRACTIONS:
+        t = re.sub(pattern, repl, t)
+    t = t.replace("'", "")
+    t = re.sub(r"[-_/]", " ", t)
+    t = re.sub(r"([,.;:!?])", r" \1 ", t)
+    t = re.sub(r"[^a-z0-9,.;:!? ]", " ", t)
+    return t.split()
+
+
+def _rewrite_phrasal(words: list[str]) -> list[str]:
+    out: list[str] = []
+    i = 0
+    while i < len(words):
+        w = words[i]
+        lemma = lx.VERBS[w][1] if w in lx.VERBS else w
+        for phrase, replacement in lx.PHRASAL_VERBS.items():
+            if phrase[0] == lemma and tuple(words[i + 1 : i + len(phrase)]) == phrase[1:]:
+                out.append(replacement or w)
+                i += len(phrase)
+                break
+        else:
+            out.append(w)
+            i += 1
+    return out
+
+
+def _rewrite(words: list[str], table: dict[tuple[str, ...], tuple[str, ...]]) -> list[str]:
+    out: list[str] = []
+    i = 0
+    longest = max(len(k) for k in table)
+    while i < len(words):
+        for n in range(min(longest, len(words) - i), 0, -1):
+            repl = table.get(tuple(words[i : i + n]))
+            if repl is not None:
+                out.extend(repl)
+                i += n
+                break
+        else:
+            out.append(words[i])
+            i += 1
+    return out
+
+
+_DROP: dict[tuple[str, ...], tuple[str, ...]] = {
+    **{k: () for k in lx.NEGATION_NEUTRALIZERS},
+    **{k: () for k in lx.NOISE_PHRASES},
+}
+
+
+def is_adverb(word: str) -> bool:
+    return word in lx.ADVERBS or (word.endswith("ly") and len(word) > 4)
+
+
+def _starts_phrase(words: list[str], i: int, index: NameIndex) -> bool:
+    """Whether a noun phrase starts at ``words[i]`` (to tell a preposition from a particle)."""
+    if i >= len(words):
+        return False
+    w = words[i]
+    if w in _PUNCT or w in lx.CONJUNCTIONS or is_adverb(w) and index.match_at(words, i) is None:
+        return False
+    if w in lx.DETERMINERS or w in lx.PRONOUNS or w in lx.QUANTIFIERS or index.match_at(words, i):
+        return True
+    if w in lx.VERBS or w in lx.COPULAS or w in lx.MODALS or w in lx.NEGATIONS:
+        return False
+    return not any(tuple(words[i : i + n]) in lx.RELATIONS for n in range(1, lx.RELATION_MAX_LEN + 1))
+
+
+def _match_phrase(
+    words: list[str], i: int, table: tuple[tuple[str, ...], ...]
+) -> tuple[str, ...] | None:
+    for phrase in sorted(table, key=len, reverse=True):
+        if tuple(words[i : i + len(phrase)]) == phrase:
+            return phrase
+    return None
+
+
+def tag_tokens(text: str, index: NameIndex) -> list[Token]:
+    """The tagged tokens of an instruction."""
+    words = _rewrite_phrasal(_rewrite(words_of(text), _DROP))
+    tokens: list[Token] = []
+    i = 0
+    while i < len(words):
+        w = words[i]
+        prev = tokens[-1] if tokens else None
+        after_det = prev is not None and prev.kind in ("DET", "QUANT")
+        match = index.match_at(words, i)
+        if match is not None:
+            name = " ".join(words[i : i + match.length])
+            tokens.append(Token("OBJ", name, object_id=match.object_id))
+            i += match.length
+            continue
+        seq = _match_phrase(words, i, lx.SEQUENCE)
+        if seq is not None:
+            tokens.append(Token("SEQ", " ".join(seq)))
+            i += len(seq)
+            continue
+        res = _match_phrase(words, i, lx.RESULT)
+        if res is not None and (res != ("so",) or _starts_phrase(words, i + 1, index)):
+            tokens.append(Token("RESULT", " ".join(res)))
+            i += len(res)
+            continue
+        rel = _relation_at(words, i, index)
+        if rel is not None:
+            phrase, kind = rel
+            tokens.append(
+                Token("REL", " ".join(phrase), relation=kind, directional=phrase in lx.DIRECTIONAL)
+            )
+            i += len(phrase)
+            continue
+        tokens.append(_tag_word(w, prev, after_det, words, i, index))
+        i += 1
+    return tokens
+
+
+def _relation_at(words: list[str], i: int, index: NameIndex) -> tuple[tuple[str, ...], str] | None:
+    for n in range(min(lx.RELATION_MAX_LEN, len(words) - i), 0, -1):
+        phrase = tuple(words[i : i + n])
+        kind = lx.RELATIONS.get(phrase)
+        if kind is None:
+            continue
+        nxt = i + n
+        if phrase == ("of",) and i > 0 and words[i - 1] in lx.CONTAINER_NOUNS:
+            return None  # "a can of coca-cola": one noun phrase, not a relation
+        if phrase == ("to",) and not _starts_phrase(words, nxt, index):
+            return None  # "to" before a verb marks an infinitive ("try to pick")
+        if n == 1 and phrase[0] in lx.PARTICLES and not _starts_phrase(words, nxt, index):
+            return None  # a particle: "put it down", "take it out"
+        return phrase, kind
+    return None
+
+
+def _tag_word(
+    w: str, prev: Token | None, after_det: bool, words: list[str], i: int, index: NameIndex
+) -> Token:
+    if w in _PUNCT:
+        return Token("PUNCT", w)
+    if w in lx.CONJUNCTIONS:
+        return Token("CONJ", w)
+    if w in lx.PARTICLES:
+        return Token("PART", w)
+    if is_adverb(w) and w not in lx.VERBS:
+        return Token("ADV", w)
+    if w in lx.NEGATIONS and not (w == "no" and after_det):
+        return Token("NEG", w)
+    if w in lx.PERSONS:
+        return Token("PERSON", w)
+    nxt = words[i + 1] if i + 1 < len(words) else ""
+    after_noun = prev is not None and prev.kind in ("OBJ", "WORD")
+    if w in lx.RELATIVE_PRONOUNS and after_noun and (nxt in lx.COPULAS or nxt in lx.MODALS or nxt in lx.VERBS):
+        return Token("RELPRON", w)  # "the can that is on the table": what follows describes it
+    if w in ("that", "this") and nxt not in lx.PRONOUNS and (
+        _starts_phrase(words, i + 1, index)
+        or (nxt == "can" and (words[i + 2] if i + 2 < len(words) else "") not in lx.PERSONS)
+    ):
+        return Token("DET", w)
+    if w in lx.PRONOUNS:
+        return Token("PRON", w)
+    if w in lx.DETERMINERS:
+        return Token("DET", w)
+    if w in lx.QUANTIFIERS:
+        return Token("QUANT", w)
+    if w in lx.COPULAS:
+        return Token("BE", w)
+    if w in lx.AUXILIARIES:
+        return Token("AUX", w)
+    if w in lx.REPETITION:
+        return Token("REPEAT", w)
+    noun_position = after_det or (prev is not None and prev.kind in ("WORD", "OBJ"))
+    if w in lx.MODALS and not (w == "can" and noun_position):
+        return Token("MODAL", w)
+    if w in lx.VERBS and not after_det:
+        cls, lemma = lx.VERBS[w]
+        return Token("VERB", w, verb_class=cls, lemma=lemma)
+    return Token("WORD", w)
+
+
+def is_sentence_end(token: Token) -> bool:
+    return token.kind == "PUNCT" and token.text in _SENTENCE_END

@@ -1,0 +1,245 @@
+"""Decide whether a paraphrase keeps the original instruction's meaning.
+
+Two checks, both recorded for every candidate:
+
+1. **Similarity**: cosine similarity of sentence embeddings (all-MiniLM-L6-v2
+   by default) between the sentences as written, as in the paper. When that
+   falls below the threshold, the sentences are compared once more with every
+   object name replaced by the object's display name (``canonical_similarity``),
+   and the better of the two must reach the threshold: a synonym the catalog
+   vouches for ("aubergine" for "eggplant": 0.42 as written, 0.87 canonical)
+   should not sink a candidate, while wording that drifts from the task still
+   does. Only candidates that need it pay for the second embedding.
+2. **Structure**: the candidate is read back into (task, source, target) —
+   by the offline parser, or by an LLM through the ``parse_instruction`` job —
+   and must equal the original's.
+
+A candidate is valid when both hold; otherwise ``reason`` says which failed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from ladev_lib.catalog import Catalog, load_catalog
+from ladev_lib.language.parser import InstructionParse, InstructionParser
+
+DEFAULT_THRESHOLD = 0.45
+"""A safety net for drift the structural check cannot see ("The history of the Roman empire
+is long. Pick up the coke can.": 0.42). Faithful paraphrases in the labelled sets score
+>= 0.65 (the better of as-written and canonical); the offline generator's lowest over the
+whole catalog is about 0.51."""
+
+
+class TextEmbedder(Protocol):
+    """What the validator needs from an embedder (``ladev_lib.language.embeddings.Embedder``)."""
+
+    def encode(self, texts: Sequence[str]) -> np.ndarray: ...
+
+
+class StructureReader(Protocol):
+    """Reads instructions into (task, source, target)."""
+
+    name: str
+
+    def read(
+        self, texts: Sequence[str], scene_objects: Sequence[frozenset[str] | None]
+    ) -> list[InstructionParse]: ...
+
+
+class OfflineReader:
+    """The grammar parser (``ladev_lib.language.parser``)."""
+
+    name = "offline"
+
+    def __init__(self, parser: InstructionParser) -> None:
+        self.parser = parser
+
+    def read(
+        self, texts: Sequence[str], scene_objects: Sequence[frozenset[str] | None]
+    ) -> list[InstructionParse]:
+        return [self.parser.parse(t, s) for t, s in zip(texts, scene_objects, strict=True)]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """One candidate's checks and verdict."""
+
+    original: str
+    candidate: str
+    similarity: float
+    """Cosine similarity of the sentences as written (the paper's measure)."""
+    canonical_similarity: float | None
+    """The same with object names replaced by display names; computed only when
+    ``similarity`` is below the threshold (None otherwise)."""
+    expected: InstructionParse
+    parse: InstructionParse
+    similar: bool
+    """max(similarity, canonical_similarity) >= threshold."""
+    same_structure: bool
+    reason: str | None
+
+    @property
+    def valid(self) -> bool:
+        return self.similar and self.same_structure
+
+    @property
+    def best_similarity(self) -> float:
+        return max(self.similarity, self.canonical_similarity or -1.0)
+
+
+def structure_mismatch(expected: InstructionParse, got: InstructionParse) -> str | None:
+    """Why ``got`` does not state the task ``expected`` states; None if it does."""
+    if not expected.ok:
+        return f"original not understood: {expected.reason}"
+    if not got.ok:
+        return f"candidate not understood: {got.reason}"
+    if got.task != expected.task:
+        return f"task changed: {expected.task} -> {got.task}"
+    if (got.source, got.target) == (expected.target, expected.source) and got.source != got.target:
+        return f"roles swapped: {got.source} is now moved to {got.target}"
+    if got.source != expected.source:
+        return f"object changed: {expected.source} -> {got.source}"
+    if got.target != expected.target:
+        return f"destination changed: {expected.target} -> {got.target}"
+    return None
+
+
+def cpu_has_native_bf16() -> bool:
+    """Whether this CPU computes bfloat16 natively (AVX512-BF16 or AMX); Linux only."""
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            flags = next((line for line in f if line.startswith("flags")), "")
+    except OSError:
+        return False
+    return any(flag in flags.split() for flag in ("avx512_bf16", "amx_bf16"))
+
+
+def resolve_precision(precision: str, device: str = "cpu") -> str:
+    """ "auto" -> "bf16" on a CPU with native bf16, else "fp32"."""
+    if precision == "auto":
+        return "bf16" if device == "cpu" and cpu_has_native_bf16() else "fp32"
+    return precision
+
+
+class ParaphraseValidator:
+    """Similarity and structural round-trip checks, batched."""
+
+    def __init__(
+        self,
+        embedder: TextEmbedder,
+        threshold: float = DEFAULT_THRESHOLD,
+        reader: StructureReader | None = None,
+        catalog: Catalog | None = None,
+        cache_size: int = 50_000,
+        precision: str = "fp32",
+    ) -> None:
+        if not 0.0 <= threshold <= 1.0:
+            raise ValueError(f"similarity threshold must be in [0, 1], got {threshold}")
+        self.embedder = embedder
+        self.threshold = threshold
+        self.parser = InstructionParser(catalog or load_catalog())
+        self.reader = reader or OfflineReader(self.parser)
+        self.cache_size = cache_size
+        if precision not in ("fp32", "bf16"):
+            raise ValueError(f"precision must be fp32 or bf16, got {precision!r}")
+        self.precision = precision
+        """bf16: embed under CPU autocast to bfloat16 (about 1.6x faster on CPUs with native
+        bf16; MiniLM cosine similarities move by 0.002 at most on the labelled pairs)."""
+        self._vectors: dict[str, np.ndarray] = {}
+
+    def embed(self, texts: Sequence[str]) -> dict[str, np.ndarray]:
+        """Unit vectors for ``texts``: new distinct texts in one batch, the rest from the cache."""
+        todo = [t for t in dict.fromkeys(texts) if t not in self._vectors]
+        if todo:
+            if len(self._vectors) + len(todo) > self.cache_size:
+                self._vectors.clear()
+            import torch
+
+            with torch.autocast("cpu", dtype=torch.bfloat16, enabled=self.precision == "bf16"):
+                vectors = self.embedder.encode(todo)
+            self._vectors.update(zip(todo, vectors, strict=True))
+        return {t: self._vectors[t] for t in texts}
+
+    def similarities(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+        """Cosine similarity of each (original, candidate) as written."""
+        vectors = self.embed([t for pair in pairs for t in pair])
+        return np.array([float(vectors[o] @ vectors[c]) for o, c in pairs], dtype=np.float32)
+
+    def canonical_similarities(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+        """Cosine similarity of each pair with object names replaced by display names."""
+        return self.similarities(
+            [(self.parser.canonical_text(o), self.parser.canonical_text(c)) for o, c in pairs]
+        )
+
+    def validate_pairs(
+        self,
+        pairs: Sequence[tuple[str, str]],
+        scene_objects: Sequence[frozenset[str] | None] | None = None,
+        expected: Sequence[InstructionParse | None] | None = None,
+    ) -> list[Verdict]:
+        """Verdicts for (original, candidate) pairs.
+
+        ``scene_objects`` (catalog ids per pair) lets names resolve against the
+        scene; ``expected`` replaces the parse of the original (e.g. the scene
+        spec's task) where given.
+        """
+        scenes = list(scene_objects) if scene_objects is not None else [None] * len(pairs)
+        raw = self.similarities(pairs)
+        low = [i for i in range(len(pairs)) if raw[i] < self.threshold]
+        canonical: dict[int, float] = dict(
+            zip(low, self.canonical_similarities([pairs[i] for i in low]).tolist(), strict=True)
+        )
+        given = list(expected) if expected is not None else [None] * len(pairs)
+        originals = list(
+            dict.fromkeys((o, s) for (o, _), s, e in zip(pairs, scenes, given, strict=True) if e is None)
+        )
+        parsed_originals = dict(
+            zip(originals, self.reader.read([o for o, _ in originals], [s for _, s in originals]), strict=True)
+        )
+        candidate_parses = self.reader.read([c for _, c in pairs], scenes)
+        verdicts = []
+        for i, ((orig, cand), scene) in enumerate(zip(pairs, scenes, strict=True)):
+            exp = given[i] or parsed_originals[(orig, scene)]
+            got = candidate_parses[i]
+            mismatch = structure_mismatch(exp, got)
+            best = max(float(raw[i]), canonical.get(i, -1.0))
+            similar = best >= self.threshold
+            reasons = []
+            if not similar:
+                reasons.append(
+                    f"similarity {raw[i]:.2f} (canonical names {canonical[i]:.2f}) < {self.threshold:.2f}"
+                )
+            if mismatch:
+                reasons.append(mismatch)
+            verdicts.append(
+                Verdict(
+                    original=orig,
+                    candidate=cand,
+                    similarity=float(raw[i]),
+                    canonical_similarity=canonical.get(i),
+                    expected=exp,
+                    parse=got,
+                    similar=similar,
+                    same_structure=mismatch is None,
+                    reason="; ".join(reasons) or None,
+                )
+            )
+        return verdicts
+
+    def validate(
+        self,
+        original: str,
+        candidates: Sequence[str],
+        scene_objects: frozenset[str] | None = None,
+        expected: InstructionParse | None = None,
+    ) -> list[Verdict]:
+        """Verdicts for several candidates of one original."""
+        pairs = [(original, c) for c in candidates]
+        return self.validate_pairs(
+            pairs, [scene_objects] * len(pairs), [expected] * len(pairs) if expected else None
+        )

@@ -1,0 +1,229 @@
+"""Lighting and camera clauses -> set_lighting / move_camera operations.
+
+Lighting: words ("slightly darker", "much brighter", "dim"), signed deltas
+("-0.2"), percentages ("20% dimmer", "lights at 120%"), factors ("x1.3"),
+"by half". Camera: moves and rotations in numbers ("3 cm left", "rotate 4
+degrees down", "yaw +3 deg", "+2 cm in y", tuples) or words ("slightly
+higher"); "random"/"altered" asks for a random change; silence or "default"
+keeps the default.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from typing import Any
+
+from ladev_lib.llm.grammar.words import NUM, length_scale
+
+LIGHT_WORDS = re.compile(
+    r"\b(?:light|lights|lighting|lit|illumination|illuminated|brightness|lamp|lamps|exposure|"
+    r"brighter|darker|dimmer|dimmed|dim|dimly|darken|darkened|brighten|brightened|luminosity|"
+    r"set lighting|set_lighting)\b"
+)
+CAMERA_WORDS = re.compile(
+    r"\b(?:camera|cam|view|viewpoint|viewing angle|perspective|pov|lens|move_camera)\b"
+)
+MOTION = re.compile(
+    rf"(?:{NUM}\s*(?:cm|mm|m|centimet(?:er|re)s?|millimet(?:er|re)s?|met(?:er|re)s?|inch(?:es)?|deg|degrees?)\b)|"
+    r"\b(?:tilt(?:ed|s)?|pan(?:ned|s)?|rotat(?:e|ed|es|ion)|roll(?:ed|s)?|yaw(?:ed)?|pitch(?:ed)?|"
+    r"turn(?:ed|s)?|shift(?:ed|s)?|mov(?:e|ed|es)|rais(?:e|ed)|lower(?:ed)?)\b"
+)
+DEFAULT_WORDS = re.compile(
+    r"\b(?:default|normal|unchanged|standard|regular|usual|no change|no changes|as is|original|untouched|nominal)\b"
+)
+RANDOM_WORDS = re.compile(r"\b(?:random|randomly|randomized|arbitrary|perturbed|altered|different|varied|changed|jittered)\b")
+
+DARKER = re.compile(
+    r"\b(?:darker|dimmer|dim|dimmed|dimly|dark|darken|darkened|lower|lowered|reduce|reduced|decrease|"
+    r"decreased|less|weaker|fainter|gloomy|gloomier|low|shadowy|minus|down|cut|lessen)\b|-\s*$"
+)
+BRIGHTER = re.compile(
+    r"\b(?:brighter|bright|brightly|brighten|brightened|increase|increased|raise|raised|more|stronger|"
+    r"intense|higher|boost|boosted|well lit|harsh|harsher|vivid|plus|up|stronger|high)\b"
+)
+SLIGHT = re.compile(
+    r"\b(?:slightly|slight|a bit|a little|a tad|somewhat|marginally|mildly|a touch|subtly|little|"
+    r"small|bit|touch|barely|gently|faintly)\b"
+)
+STRONG = re.compile(
+    r"\b(?:much|a lot|significantly|considerably|far|very|strongly|greatly|way|substantially|heavily|"
+    r"really|extremely|dramatically|noticeably much|lot|large|big|drastically|very much)\b"
+)
+MAXIMAL = re.compile(r"\b(?:maximum|maximally|max|as (?:bright|dark|dim) as possible|fully)\b")
+
+
+def read_lighting(clause: str) -> dict[str, Any] | None:
+    """A set_lighting operation from a lighting clause; None for default lighting."""
+    text = f" {clause} "
+    factor = re.search(rf"(?:\bx|×|\btimes)\s*({NUM})|({NUM})\s*(?:x\b|×|times\b)", text)
+    if factor is not None:
+        value = float(factor.group(1) or factor.group(2))
+        return {"op": "set_lighting", "intensity_delta": round(value - 1.0, 4)}
+    text = re.sub(r"\b(?:by )?half\b|\bhalved\b", " 50% ", text)
+    nums = [m for m in re.finditer(rf"(?<![\w.@]){NUM}(?:\s*(%))?", text)]
+    darker, brighter = DARKER.search(text), BRIGHTER.search(text)
+    sign = -1.0 if darker and not brighter else 1.0 if brighter and not darker else 0.0
+    if darker and brighter:
+        sign = -1.0 if darker.start() < brighter.start() else 1.0
+    if nums:
+        m = nums[0]
+        raw = m.group(0)
+        value = float(re.match(NUM, raw.strip()).group(0))  # type: ignore[union-attr]
+        suffix = m.group(1)
+        explicit_sign = raw.strip()[0] in "+-"
+        if suffix == "%":
+            if sign == 0.0 and re.search(r"\b(?:at|of|to)\s*$", text[: m.start()]):
+                delta = value / 100 - 1.0
+            else:
+                delta = (sign or 1.0) * abs(value) / 100 if not explicit_sign else value / 100
+        elif explicit_sign:
+            delta = value
+        elif sign != 0.0:
+            delta = sign * abs(value)
+        elif 0.5 <= value <= 2.0:
+            delta = value - 1.0  # an absolute intensity factor: "intensity 0.8"
+        else:
+            delta = value
+        return {"op": "set_lighting", "intensity_delta": round(delta, 4)}
+    if sign == 0.0:
+        if RANDOM_WORDS.search(text):
+            return {"op": "set_lighting", "random": True}
+        return None  # "default lighting" and the like: no operation
+    if MAXIMAL.search(text):
+        magnitude = 0.5
+    elif STRONG.search(text):
+        magnitude = 0.4
+    elif SLIGHT.search(text):
+        magnitude = 0.15
+    else:
+        magnitude = 0.25
+    return {"op": "set_lighting", "intensity_delta": sign * magnitude}
+
+
+def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str, Any] | None:
+    """A move_camera operation from a camera clause; None for the default camera."""
+    text = f" {clause} "
+    translation = [0.0, 0.0, 0.0]
+    rotation = [0.0, 0.0, 0.0]
+    moved = False
+    for key in re.findall(r"@v\d+@", text):
+        values = slots[key]
+        is_rotation = bool(re.search(r"\b(?:rotat\w*|deg\w*|orientation|angles?)\b", text))
+        if is_rotation:
+            rotation = [a + b for a, b in zip(rotation, values, strict=True)]
+        else:
+            scale = 0.01 if re.search(r"\bcm\b", text) or any(abs(v) > 0.5 for v in values) else 1.0
+            translation = [a + b * scale for a, b in zip(translation, values, strict=True)]
+        moved = True
+        text = text.replace(key, " ")
+    for part in re.split(r"\band\b|,|\bthen\b", text):
+        t, r, ok = camera_motion(part)
+        if ok:
+            translation = [a + b for a, b in zip(translation, t, strict=True)]
+            rotation = [a + b for a, b in zip(rotation, r, strict=True)]
+            moved = True
+    if moved:
+        return {
+            "op": "move_camera",
+            "translation_m": [round(v, 4) for v in translation],
+            "rotation_deg": [round(v, 2) for v in rotation],
+        }
+    if RANDOM_WORDS.search(text) and not DEFAULT_WORDS.search(text):
+        return {"op": "move_camera", "random": True}
+    return None
+
+def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
+    translation = [0.0, 0.0, 0.0]
+    rotation = [0.0, 0.0, 0.0]
+    strength = 2.0 if SLIGHT.search(part) else 5.0 if STRONG.search(part) else 3.0
+    found = False
+    # Signed axis values: "x+0.02", "dy = -3 cm", "yaw -2", "pitch: 3 deg".
+    for m in re.finditer(
+        rf"\b(dx|dy|dz|x|y|z|roll|pitch|yaw)\s*[:=]?\s*({NUM})\s*(cm|mm|m|deg|degrees?)?\b", part
+    ):
+        axis, value, unit = m.group(1), float(m.group(2)), m.group(3)
+        if axis in ("roll", "pitch", "yaw"):
+            rotation[("roll", "pitch", "yaw").index(axis)] += value
+        else:
+            scale = length_scale(unit) if unit else (0.01 if abs(value) > 0.5 else 1.0)
+            translation["xyz".index(axis[-1])] += value * scale
+        found = True
+    for m in re.finditer(
+        rf"({NUM})\s*(cm|mm|m)?\s*(?:in|along|on)\s+(?:the\s+)?(x|y|z)(?:\s*(?:axis|direction))?\b", part
+    ):
+        value, unit, axis = float(m.group(1)), m.group(2), m.group(3)
+        scale = length_scale(unit) if unit else (0.01 if abs(value) > 0.5 else 1.0)
+        translation["xyz".index(axis)] += value * scale
+        found = True
+    if found:
+        return translation, rotation, True
+    dist = re.search(
+        rf"({NUM})\s*(cm|mm|m|centimet(?:er|re)s?|millimet(?:er|re)s?|met(?:er|re)s?|inch(?:es)?)\b", part
+    )
+    angle = re.search(rf"({NUM})\s*(?:deg|degrees?)\b", part)
+    rotate_verb = re.search(r"\b(tilt\w*|pan\w*|rotat\w*|roll\w*|yaw\w*|pitch\w*|turn\w*|angled)\b", part)
+    direction = re.search(
+        r"\b(left|right|up|upward|upwards|down|downward|downwards|forward|forwards|closer|"
+        r"backward|backwards|back|away|farther|further|higher|lower|raised|lowered|in|out|"
+        r"clockwise|counterclockwise|counter clockwise|anticlockwise|anti clockwise)\b",
+        part,
+    )
+    dir_word = direction.group(1) if direction else None
+    if angle is not None or (rotate_verb is not None and dist is None):
+        value = float(angle.group(1)) if angle is not None else strength
+        verb = rotate_verb.group(1) if rotate_verb is not None else ""
+        if angle is None and dir_word is None and not verb:
+            return translation, rotation, False
+        if verb.startswith("roll") or dir_word in (
+            "clockwise", "counterclockwise", "counter clockwise", "anticlockwise", "anti clockwise"
+        ):
+            sign = -1.0 if dir_word == "clockwise" or dir_word == "right" else 1.0
+            rotation[0] += sign * value
+        elif dir_word in ("up", "upward", "upwards", "higher", "raised") or (
+            verb.startswith(("tilt", "pitch")) and dir_word not in ("down", "downward", "downwards", "lower", "lowered")
+            and dir_word is not None
+        ):
+            rotation[1] -= value
+        elif dir_word in ("down", "downward", "downwards", "lower", "lowered") or verb.startswith(("tilt", "pitch")):
+            rotation[1] += value
+        elif dir_word == "right":
+            rotation[2] -= value
+        else:  # left, or a pan / yaw / turn without a direction
+            rotation[2] += value
+        return translation, rotation, True
+    move_verb = re.search(
+        r"\b(mov\w*|shift\w*|translat\w*|slid\w*|displac\w*|rais\w*|lower\w*|offset|push\w*|pull\w*|nudg\w*)\b",
+        part,
+    )
+    comparative = dir_word in ("higher", "lower", "closer", "farther", "further", "raised", "lowered")
+    if dist is None and ((move_verb is None and not comparative) or dir_word is None):
+        return translation, rotation, False
+    value = float(dist.group(1)) * length_scale(dist.group(2)) if dist is not None else strength / 100
+    if dir_word is None:
+        dir_word = "left"  # a move without a direction: sideways, as the most common case
+    axis, sign = {
+        "left": (1, 1.0), "right": (1, -1.0), "up": (2, 1.0), "upward": (2, 1.0), "upwards": (2, 1.0),
+        "higher": (2, 1.0), "raised": (2, 1.0), "down": (2, -1.0), "downward": (2, -1.0),
+        "downwards": (2, -1.0), "lower": (2, -1.0), "lowered": (2, -1.0), "forward": (0, 1.0),
+        "forwards": (0, 1.0), "closer": (0, 1.0), "in": (0, 1.0), "backward": (0, -1.0),
+        "backwards": (0, -1.0), "back": (0, -1.0), "away": (0, -1.0), "farther": (0, -1.0),
+        "further": (0, -1.0), "out": (0, -1.0),
+    }.get(dir_word, (1, 1.0))
+    if move_verb is not None and move_verb.group(1).startswith("rais"):
+        axis, sign = 2, 1.0
+    elif move_verb is not None and move_verb.group(1).startswith("lower") and dir_word is None:
+        axis, sign = 2, -1.0
+    translation[axis] += sign * abs(value)
+    return translation, rotation, True
+
+
+def merge_camera(moves: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """All camera moves of a description as one operation (a random one stays apart)."""
+    if not moves:
+        return []
+    if any(m.get("random") for m in moves):
+        return [{"op": "move_camera", "random": True}]
+    t = [round(sum(m["translation_m"][k] for m in moves), 4) for k in range(3)]
+    r = [round(sum(m["rotation_deg"][k] for m in moves), 2) for k in range(3)]
+    return [{"op": "move_camera", "translation_m": t, "rotation_deg": r}]

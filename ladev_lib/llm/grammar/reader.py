@@ -1,0 +1,303 @@
+"""The description reader: segments text into clauses, routes each to its reader."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from ladev_lib.llm.grammar.environment import (
+    BRIGHTER,
+    CAMERA_WORDS,
+    DARKER,
+    DEFAULT_WORDS,
+    LIGHT_WORDS,
+    MOTION,
+    merge_camera,
+    read_camera,
+    read_lighting,
+)
+from ladev_lib.llm.grammar.instruction import parse_instruction
+from ladev_lib.llm.grammar.objects import (
+    canonical_name,
+    find_region,
+    find_relation,
+    quantity,
+    unknown_phrase,
+)
+from ladev_lib.llm.grammar.words import (
+    COUNT_TOTAL,
+    HEADERS,
+    KEYED_COUNT,
+    NUM,
+    RANDOM_QUALIFIER,
+    Vocabulary,
+    normalize_text,
+    protect_coordinates,
+    split_clauses,
+    split_sentences,
+)
+
+# -- results ---------------------------------------------------------------------
+
+
+@dataclass
+class _ObjectOp:
+    mention: str | None
+    position: dict[str, Any] | None = None
+    unknown: bool = False
+
+
+@dataclass
+class _Reading:
+    objects: list[_ObjectOp] = field(default_factory=list)
+    total: int | None = None
+    randoms: int = 0
+    random_positions: list[dict[str, Any] | None] = field(default_factory=list)
+    lighting: list[dict[str, Any]] = field(default_factory=list)
+    camera: list[dict[str, Any]] = field(default_factory=list)
+    object_set: str | None = None
+    recognised: int = 0
+    task_line: str | None = None
+
+
+# -- the reader ----------------------------------------------------------------------
+
+
+class _Reader:
+    def __init__(self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]]) -> None:
+        self.vocab = vocab
+        self.slots = slots
+        self.out = _Reading()
+        self._previous_domain: str | None = None
+
+    def read(self, text: str) -> _Reading:
+        domain_hint: str | None = None
+        for raw_line in re.split(r"\n", text):
+            line = raw_line.strip()
+            if not line:
+                continue
+            task = re.match(r"^\s*(?:task|instruction|command|goal)\s*[:=]\s*(.+)$", line)
+            if task:
+                self.out.task_line = task.group(1).strip().rstrip(".")
+                self.out.recognised += 1
+                continue
+            for header in HEADERS.finditer(line):
+                name = header.group(1)
+                domain_hint = "environment" if name.startswith(("env", "setup")) else "objects"
+            line = HEADERS.sub(" ", line)
+            for sentence in split_sentences(line):
+                self._sentence(sentence, domain_hint)
+        return self.out
+
+    def _sentence(self, sentence: str, hint: str | None) -> None:
+        self._object_set(sentence)
+        # "objects: 2" would be cut apart at the colon below: read it first.
+        keyed = KEYED_COUNT.search(sentence)
+        if keyed is not None:
+            if self.out.total is None:
+                self.out.total = int(keyed.group(1))
+            self.out.recognised += 1
+            sentence = sentence[: keyed.start()] + " " + sentence[keyed.end():]
+        previous = self._previous_domain
+        last_object: _ObjectOp | None = None
+        for clause in split_clauses(sentence):
+            domain = self._domain(clause, previous, hint)
+            if domain == "lighting":
+                self.out.recognised += 1
+                op = read_lighting(clause)
+                if op is not None:
+                    self.out.lighting.append(op)
+            elif domain == "camera":
+                self.out.recognised += 1
+                op = read_camera(clause, self.slots)
+                if op is not None:
+                    self.out.camera.append(op)
+            elif domain == "environment":
+                if DEFAULT_WORDS.search(clause):
+                    self.out.recognised += 1
+            else:
+                last_object = self._objects(clause, last_object)
+            previous = domain
+        self._previous_domain = previous
+
+    def _domain(self, clause: str, previous: str | None, hint: str | None) -> str:
+        # 'light blue cup' is an object, not lighting: look for keywords outside object names.
+        masked = self.vocab.name_pattern.sub(" @n@ ", clause)
+        cam, light = CAMERA_WORDS.search(masked), LIGHT_WORDS.search(masked)
+        if cam and light:
+            return "camera" if cam.start() < light.start() else "lighting"
+        if cam:
+            return "camera"
+        if light:
+            return "lighting"
+        if (
+            self.vocab.name_pattern.search(clause)
+            or COUNT_TOTAL.search(f" {clause} ")
+            or "@p" in clause
+            or re.search(r"\b(?:objects?|items?|random)\b", clause)
+        ):
+            return "objects"
+        if previous == "camera" and MOTION.search(clause):
+            return "camera"
+        if previous == "lighting" and (DARKER.search(clause) or BRIGHTER.search(clause) or re.search(NUM, clause)):
+            return "lighting"
+        if re.search(r"\bbright(?:ness)?\b|\bdark(?:ness)?\b", clause) and re.search(
+            r"\b(?:scene|room|environment|it is|its)\b", clause
+        ):
+            return "lighting"
+        if (hint == "environment" or previous in ("lighting", "camera", "environment")) and (
+            self.vocab.name_pattern.search(clause) is None and not COUNT_TOTAL.search(clause)
+        ):
+            return "environment"
+        return "objects"
+
+    def _object_set(self, sentence: str) -> None:
+        if re.search(r"\bycb\b|\bunseen objects?\b", sentence):
+            self.out.object_set = "ycb"
+        elif re.search(r"\bsimpler ?env\b|\bsimpler objects?\b|\bseen objects?\b|\bsimpler set\b", sentence):
+            self.out.object_set = "simpler"
+
+    # -- objects -----------------------------------------------------------------
+    def _objects(self, clause: str, last: _ObjectOp | None) -> _ObjectOp | None:
+        text = f" {clause} "
+        position: dict[str, Any] | None = None
+        consumed = False
+
+        # Counts: "3 objects", "2 other objects", "objects: 3".
+        for m in COUNT_TOTAL.finditer(text):
+            n = int(next(g for g in m.groups() if g is not None))
+            span = m.group(0)
+            if RANDOM_QUALIFIER.search(span):
+                self.out.randoms += n
+                self.out.random_positions.append(None)
+            elif self.out.total is None:
+                self.out.total = n
+            else:
+                self.out.randoms += n
+                self.out.random_positions.append(None)
+            consumed = True
+            text = text.replace(span, " ", 1)
+        if re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
+            n_match = re.search(r"\d+", text)
+            n = int(n_match.group(0)) if n_match else 1
+            self.out.randoms += n
+            self.out.random_positions.append(None)
+            return last
+        add_random = re.compile(r"\b(?:add|place|put)\s+(?:a\s+|an\s+|1\s+)?random\s+(?:\w+\s+)?(?:object|item|one)\b")
+        if add_random.search(text):
+            self.out.randoms += 1
+            self.out.random_positions.append(None)
+            text = add_random.sub(" ", text)
+            consumed = True
+
+        # Coordinates.
+        for key in re.findall(r"@p\d+@", text):
+            x, y = self.slots[key][:2]
+            position = {"x": round(x, 4), "y": round(y, 4)}
+            text = text.replace(key, " ")
+            consumed = True
+
+        # Relations to another object: "near the bowl", "left of the plate".
+        rel = find_relation(self.vocab, text)
+        if rel is not None:
+            position, text = rel
+            consumed = True
+
+        # Regions: "on the left", "front right corner", "in the middle".
+        reg = find_region(text)
+        if reg is not None:
+            region, text = reg
+            position = position or {"region": region}
+            consumed = True
+
+        # Named objects, with quantities ("2 apples").
+        found: list[_ObjectOp] = []
+        for m in list(self.vocab.name_pattern.finditer(text)):
+            name = canonical_name(self.vocab, m.group(0))
+            qty = quantity(text[: m.start()])
+            for _ in range(qty):
+                found.append(_ObjectOp(name))
+        text_wo_names = self.vocab.name_pattern.sub(" @n@ ", text)
+        if not found:
+            for m in self.vocab.category_pattern.finditer(text):
+                cat = m.group("cat")
+                qty = quantity(m.group(0)[: m.start("cat") - m.start()])
+                found.extend(_ObjectOp(cat) for _ in range(qty))
+            text_wo_names = self.vocab.category_pattern.sub(" @n@ ", text_wo_names)
+        if not found:
+            unknown = unknown_phrase(text_wo_names)
+            if unknown:
+                found.append(_ObjectOp(unknown, unknown=True))
+
+        if found:
+            if position is not None:
+                found[-1].position = position
+            self.out.objects.extend(found)
+            self.out.recognised += 1
+            return found[-1]
+        if position is not None:
+            if consumed and self.out.random_positions and self.out.random_positions[-1] is None and last is None:
+                self.out.random_positions[-1] = position
+            elif last is not None and last.position is None:
+                last.position = position
+            self.out.recognised += 1
+        elif consumed:
+            self.out.recognised += 1
+        return last
+
+
+# -- entry point ---------------------------------------------------------------------
+
+
+def read_description(
+    description: str,
+    vocab: Vocabulary,
+    instruction: str | None = None,
+    task: str | None = None,
+) -> dict[str, Any]:
+    """Description (+ instruction or task type) -> a SceneOperations-shaped dict."""
+    text = normalize_text(description or "", vocab)
+    protected, slots = protect_coordinates(text)
+    reading = _Reader(vocab, slots).read(protected)
+
+    out: dict[str, Any] = {"schema_version": 1, "operations": []}
+    if reading.object_set:
+        out["object_set"] = reading.object_set
+    instruction = instruction or reading.task_line
+    if instruction:
+        parsed = parse_instruction(instruction)
+        if parsed is None:
+            out["error"] = (
+                f"the instruction {instruction!r} is none of the four task forms "
+                "(pick up X; move X near Y; put X on Y; put X in Y)"
+            )
+            return out
+        out["task"] = parsed
+    elif task:
+        out["task"] = {"type": task}
+
+    if description.strip() and reading.recognised == 0:
+        out["error"] = "no object, object count, position, lighting or camera setting found in the description"
+        return out
+
+    ops: list[dict[str, Any]] = []
+    named = reading.objects
+    for obj in named:
+        op: dict[str, Any] = {"op": "add_object", "object": obj.mention}
+        if obj.position is not None:
+            op["position"] = obj.position
+        ops.append(op)
+    randoms = reading.randoms
+    if reading.total is not None:
+        randoms = max(reading.total - len(named), 0)
+    positions = [p for p in reading.random_positions if p is not None]
+    for i in range(randoms):
+        op = {"op": "add_object", "object": None}
+        if i < len(positions):
+            op["position"] = positions[i]
+        ops.append(op)
+    ops.extend(reading.lighting[-1:])
+    ops.extend(merge_camera(reading.camera))
+    out["operations"] = ops
+    return out

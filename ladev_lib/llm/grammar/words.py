@@ -1,0 +1,236 @@
+"""Words, numbers, units, the catalog vocabulary and sentence segmentation."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+# -- numbers -----------------------------------------------------------------------
+
+_NUMBER_WORDS = {
+    "zero": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7,
+    "eight": 8, "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13,
+    "fourteen": 14, "fifteen": 15, "sixteen": 16, "seventeen": 17, "eighteen": 18,
+    "nineteen": 19, "twenty": 20,
+}
+_NUMBER_PHRASES = [
+    (r"\bhalf a dozen\b", "6"), (r"\ba dozen\b", "12"), (r"\ba couple of\b", "2"),
+    (r"\ba pair of\b", "2"), (r"\ba single\b", "1"), (r"\bsingle\b", "1"), (r"\bjust 1\b", "1"),
+    (r"\bboth\b", "2"),
+]
+NUM = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"
+
+SCENE_NOUNS = {
+    "table", "scene", "workspace", "tabletop", "desk", "surface", "counter", "setup", "set",
+    "environment", "layout", "arrangement", "configuration", "world", "bench", "area",
+}
+FILLERS = {
+    "a", "an", "the", "some", "any", "there", "is", "are", "be", "being", "was", "were", "with",
+    "and", "or", "plus", "also", "too", "as", "well", "of", "them", "which", "these", "those", "that",
+    "this", "it", "its", "has", "have", "having", "contains", "contain", "containing", "holds", "hold",
+    "holding", "includes", "include", "including", "included", "featuring", "features", "feature",
+    "consisting", "consists", "made", "up", "let", "lets", "create", "make", "generate", "build",
+    "add", "place", "placed", "put", "set", "puts", "located", "lying", "sitting", "standing",
+    "resting", "positioned", "upright", "somewhere", "anywhere", "on", "in", "at", "to", "from", "for",
+    "into", "onto", "by", "we", "i", "want", "need", "please", "should", "would", "like", "just",
+    "only", "exactly", "total", "totally", "details", "detail", "number", "objects", "object", "items",
+    "item", "things", "thing", "random", "randomly", "other", "others", "another", "more", "additional",
+    "extra", "else", "chosen", "selected", "picked", "arbitrary", "whatever", "different", "various",
+    "assorted", "distractor", "distractors", "distractor objects", "each", "every", "all", "both",
+    "here", "then", "next", "following", "follows", "below", "rest", "remaining", "same",
+    "cluttered", "messy", "tidy", "simple", "clean", "empty", "busy", "small", "large", "typical",
+    "usual", "normal", "default", "standard", "new", "nice", "nicely", "arranged", "scattered",
+    "spread", "visible", "clearly", "one", "ones", "side", "corner", "edge", "part", "region",
+    "position", "positions", "pose", "poses", "location", "spot", "middle", "center", "centre",
+    "left", "right", "front", "back", "top", "bottom", "far", "near", "close", "robot", "robots",
+    "gripper", "arm", "it's", "theres", "there's", "scene's", "they", "their", "no",
+    "not", "nothing", "none", "specific", "specified", "unspecified", "given", "mentioned",
+    "besides", "beside", "apart", "except", "alongside", "together", "respectively", "whose",
+    "where", "who", "what", "while", "but", "so", "such", "e.g", "eg", "ie", "etc",
+    "sim", "simulation", "simulated", "test", "tabletop", "task", "instruction",
+}
+STOP_PREPOSITIONS = {
+    "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
+    "behind", "between", "inside", "onto", "into", "by", "toward", "towards", "around", "left",
+    "right", "front", "back",
+}
+
+HEADERS = re.compile(
+    r"(?:^|(?<=[.;!?])\s*)\s*(number and details of objects|details of objects|objects and details|"
+    r"object configuration|objects|environmental setup|environment setup|environment|setup|scene)\s*:(?!\s*\d)",
+)
+_COORD2 = re.compile(
+    rf"[\(\[]\s*(?:x\s*=\s*)?({NUM})\s*(cm|mm|m)?\s*[,;]\s*(?:y\s*=\s*)?({NUM})\s*(cm|mm|m)?\s*[\)\]]"
+    rf"|\bx\s*[=:]\s*({NUM})\s*(cm|mm|m)?\s*,?\s*(?:and\s+)?y\s*[=:]\s*({NUM})\s*(cm|mm|m)?"
+)
+_COORD3 = re.compile(rf"[\(\[]\s*({NUM})\s*,\s*({NUM})\s*,\s*({NUM})\s*[\)\]]")
+COUNT_TOTAL = re.compile(
+    r"(?:\b(?:number of objects|num_objects|n_objects|objects|object count|count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)\b)"
+    r"|(?:\b(?:a total of|total of|in total|altogether)\s*(\d+)\b)"
+    r"|(?:\b(\d+)\s+(?:(?:different|distinct|total|items?|objects?|things?|props?|pieces?|random|other|more|additional|extra|"
+    r"distractors?|small|household|kitchen|everyday|assorted|various|ycb|simplerenv|simpler)\s+){0,3}?"
+    r"(?:objects?|items?|things?|props?|pieces?|distractors?)\b)"
+)
+KEYED_COUNT = re.compile(
+    r"\b(?:number of objects|num_objects|n_objects|objects|object count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)"
+    r"\s*(?=$|[;,.)\n])"  # "objects: 7" but not "objects: 7-up can"
+)
+RANDOM_QUALIFIER = re.compile(r"\b(?:random|other|more|additional|extra|distractors?|arbitrary|unspecified|further)\b")
+
+
+def unit_scale(unit: str | None, values: Iterable[float]) -> float:
+    if unit in ("cm",):
+        return 0.01
+    if unit in ("mm",):
+        return 0.001
+    if unit in ("m",):
+        return 1.0
+    # No unit: metres unless the numbers only make sense as centimetres.
+    return 0.01 if any(abs(v) > 1.0 for v in values) else 1.0
+
+
+def length_scale(unit: str) -> float:
+    unit = unit.lower()
+    if unit.startswith("mm") or unit.startswith("millimet"):
+        return 0.001
+    if unit.startswith("cm") or unit.startswith("centimet"):
+        return 0.01
+    if unit.startswith("inch"):
+        return 0.0254
+    return 1.0
+
+
+# -- vocabulary ----------------------------------------------------------------------
+
+
+@dataclass
+class Vocabulary:
+    """The names the grammar recognises, longest first, from the prompt's object list."""
+
+    names: list[str]
+    """Names as they appear in normalised text (number words as digits), longest first."""
+    canonical: dict[str, str]
+    """Normalised form -> the name as the catalog writes it."""
+    ids: dict[str, str]
+    """catalog id -> display name (ids may appear verbatim in text)."""
+    categories: set[str]
+
+    @classmethod
+    def from_objects(cls, objects: Iterable[Mapping[str, Any]]) -> Vocabulary:
+        names: set[str] = set()
+        ids: dict[str, str] = {}
+        categories: set[str] = set()
+        for o in objects:
+            display = _norm_name(str(o["name"]))
+            names.add(display)
+            for s in o.get("synonyms", ()) or ():
+                names.add(_norm_name(str(s)))
+            ids[str(o["id"]).lower()] = display
+            if o.get("category"):
+                categories.add(str(o["category"]).replace("_", " "))
+        canonical = {_digits(n): n for n in names}
+        for form, name in list(canonical.items()):
+            if SPLIT_WORDS.search(form):
+                canonical[form.replace(" ", "~")] = name
+        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories)
+
+    @property
+    def name_pattern(self) -> re.Pattern[str]:
+        if not hasattr(self, "_pattern"):
+            alts = "|".join(re.escape(n) for n in self.names)
+            self._pattern = re.compile(rf"(?<![a-z0-9])(?:{alts})(?:e?s)?(?![a-z0-9])")
+        return self._pattern
+
+    @property
+    def category_pattern(self) -> re.Pattern[str]:
+        if not hasattr(self, "_cpattern"):
+            alts = "|".join(re.escape(c) for c in sorted(self.categories, key=len, reverse=True))
+            self._cpattern = re.compile(
+                rf"(?<![a-z0-9])(?:(?:a|an|some|another|random|any|1|2|3|4|5|6)\s+(?:\w+\s+)?)"
+                rf"(?P<cat>{alts})(?:e?s)?(?![a-z0-9])"
+            )
+        return self._cpattern
+
+
+def _digits(text: str) -> str:
+    for pattern, digit in _NUMBER_PHRASES:
+        text = re.sub(pattern, digit, text)
+    return re.sub(
+        r"\b(" + "|".join(_NUMBER_WORDS) + r")\b", lambda m: str(_NUMBER_WORDS[m.group(1)]), text
+    )
+
+
+def _norm_name(text: str) -> str:
+    text = text.lower().replace("'", "").replace("’", "")
+    text = re.sub(r"[-_/]", " ", text)
+    return re.sub(r"\s+", " ", text).strip()
+
+
+def normalize_text(text: str, vocab: Vocabulary) -> str:
+    """Lower case, number words as digits, ids as display names, tidy punctuation."""
+    t = text.lower()
+    t = t.replace("’", "'").replace("‘", "'").replace("“", '"').replace("”", '"')
+    t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
+    t = t.replace("&", " and ").replace("'", "")
+    for cid, display in vocab.ids.items():
+        if len(cid) >= 4 and cid in t:
+            t = re.sub(rf"(?<![a-z0-9]){re.escape(cid)}(?![a-z0-9])", display, t)
+    t = re.sub(r"(?<=[a-z])-(?=[a-z0-9])|(?<=[0-9])-(?=[a-z])", " ", t)
+    t = re.sub(r"[ \t]+", " ", _digits(t.replace("_", " ")))
+    # Names such as 'cup with a handle' must survive clause splitting at 'with'.
+    for name in vocab.names:
+        if "~" in name:
+            spaced = name.replace("~", " ")
+            if spaced in t:
+                t = re.sub(rf"(?<![a-z0-9]){re.escape(spaced)}(?![a-z0-9])", name, t)
+    return t
+
+
+# -- segmentation ------------------------------------------------------------------
+
+
+def protect_coordinates(text: str) -> tuple[str, dict[str, tuple[float, ...]]]:
+    """Replace coordinate tuples by placeholders so that commas inside them survive splitting."""
+    slots: dict[str, tuple[float, ...]] = {}
+
+    def keep3(m: re.Match[str]) -> str:
+        key = f"@v{len(slots)}@"
+        slots[key] = tuple(float(g) for g in m.groups())
+        return f" {key} "
+
+    def keep2(m: re.Match[str]) -> str:
+        g = m.groups()
+        if g[0] is not None:
+            xs, xu, ys, yu = g[0], g[1], g[2], g[3]
+        else:
+            xs, xu, ys, yu = g[4], g[5], g[6], g[7]
+        x, y = float(xs), float(ys)
+        unit = xu or yu
+        scale = unit_scale(unit, (x, y))
+        key = f"@p{len(slots)}@"
+        slots[key] = (x * scale, y * scale)
+        return f" {key} "
+
+    text = _COORD3.sub(keep3, text)
+    text = _COORD2.sub(keep2, text)
+    # "2 cans: a pepsi can and a sprite can" states the count, like "2 objects: ...".
+    text = re.sub(r"\b(\d+)\s+[a-z]+s\s*:", r"\1 objects:", text)
+    return text, slots
+
+
+def split_sentences(text: str) -> list[str]:
+    parts = re.split(r"(?<!\d)\.(?!\d)|[;\n!?]|(?<=\d)\.(?=\s|$)", text)
+    return [p.strip(" \t-*•:,") for p in parts if p and p.strip(" \t-*•:,")]
+
+
+SPLIT_WORDS = re.compile(
+    r"\band then\b|\band\b|\bwhile\b|\bbut\b|\bplus\b|\bwith\b|\bincluding\b|\bsuch as\b|"
+    r"\bwhereas\b|\balong with\b|\bas well as\b"
+)
+
+
+def split_clauses(sentence: str) -> list[str]:
+    parts = re.split(rf",|:|(?<!~)(?:{SPLIT_WORDS.pattern})(?!~)", sentence)
+    return [p.strip() for p in parts if p and p.strip()]

@@ -1,0 +1,69 @@
+"""Offline handlers for the scene jobs: ``describe_scenes`` and ``compile_scene``.
+
+Both read the same template inputs the prompts in ``conf/prompts/default.yaml``
+are rendered from, and answer in the JSON a model is asked for.
+
+``describe_scenes`` inputs: ``items`` (id, task, num_objects, object_set,
+environment), ``bounds``; optional ``catalog_path``. Each item's seed is
+derived from the request's seed (the study seed) and the item id, the same
+seed the study design gives the scene.
+
+``compile_scene`` inputs: ``description``, ``instruction`` (may be empty),
+``task`` (may be empty), ``objects`` (the catalog's list in the prompt).
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from ladev_lib.catalog import load_catalog
+from ladev_lib.llm.base import OFFLINE_JOBS, LLMRequest
+from ladev_lib.llm.grammar import RULE_MODULES as GRAMMAR_MODULES
+from ladev_lib.llm.grammar import Vocabulary, read_description
+from ladev_lib.llm.scene_writer import write_scene
+from ladev_lib.scenes.spec import SceneBounds
+from ladev_lib.study.seeds import derive_seed
+
+RULE_MODULES = (
+    *GRAMMAR_MODULES,
+    "ladev_lib.llm.scene_writer",
+    "ladev_lib.study.seeds",
+    "ladev_lib.scenes.sampling",
+    "ladev_lib.scenes.placement",
+)
+"""Modules whose source is part of the offline rules' fingerprint."""
+
+
+@OFFLINE_JOBS.register("describe_scenes")
+def describe_scenes(request: LLMRequest) -> str:
+    inputs = request.inputs
+    catalog = load_catalog(inputs.get("catalog_path"))
+    bounds = SceneBounds.model_validate(inputs.get("bounds") or {})
+    base = request.seed if request.seed is not None else 0
+    scenes: list[dict[str, Any]] = []
+    for item in inputs["items"]:
+        written = write_scene(
+            task=item["task"],
+            num_objects=int(item["num_objects"]),
+            object_set=item["object_set"],
+            environment=item["environment"],
+            seed=derive_seed(base, str(item["id"])),
+            catalog=catalog,
+            bounds=bounds,
+        )
+        scenes.append({"id": item["id"], "description": written.description, "instruction": written.instruction})
+    return json.dumps({"scenes": scenes}, ensure_ascii=False)
+
+
+@OFFLINE_JOBS.register("compile_scene")
+def compile_scene(request: LLMRequest) -> str:
+    inputs = request.inputs
+    vocab = Vocabulary.from_objects(inputs.get("objects") or [])
+    ops = read_description(
+        str(inputs.get("description") or ""),
+        vocab,
+        instruction=str(inputs.get("instruction") or "") or None,
+        task=str(inputs.get("task") or "") or None,
+    )
+    return json.dumps(ops, ensure_ascii=False)

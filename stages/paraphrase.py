@@ -1,0 +1,82 @@
+"""Stage ``paraphrase``: basic instructions -> validated paraphrases (instructions.parquet).
+
+Reads params.yaml: study.seed, study.paraphrases_per_instruction, llm, paraphrase,
+prompts.paraphrase, prompts.parse_instruction, paths.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from tqdm import tqdm
+
+import ladev_lib.language.offline_jobs  # noqa: F401  (registers the offline language jobs)
+from ladev_lib.catalog import load_catalog
+from ladev_lib.config import load_params, section
+from ladev_lib.language.config import ParaphraseConfig
+from ladev_lib.language.pipeline import make_validator, paraphrase_scenes, scene_tasks
+from ladev_lib.llm.config import LLMConfig, make_client
+from ladev_lib.llm.prompts import load_prompts
+from ladev_lib.tables import (
+    CompiledSceneRow,
+    InstructionRow,
+    SceneDesignRow,
+    read_table,
+    rows_of,
+    write_table,
+)
+
+
+def main(params_path: str = "params.yaml") -> int:
+    params = load_params(params_path)
+    paths = params["paths"]
+    study = params["study"]
+    cfg = section(params, "paraphrase", ParaphraseConfig)
+    llm = section(params, "llm", LLMConfig)
+    prompts = load_prompts(params, ["paraphrase", "parse_instruction"])
+    catalog = load_catalog(params.get("catalog"))
+
+    scenes = rows_of(read_table(paths["scenes"], SceneDesignRow), SceneDesignRow)
+    compiled = rows_of(read_table(paths["compiled"], CompiledSceneRow), CompiledSceneRow)
+    tasks, skipped = scene_tasks(scenes, compiled)
+
+    client = make_client(llm, Path(paths["llm_cache_dir"]) / "paraphrase")
+    validator = make_validator(
+        cfg, llm, client=client, parse_prompt=prompts["parse_instruction"], catalog=catalog
+    )
+    outcome = paraphrase_scenes(
+        tasks,
+        client=client,
+        prompt=prompts["paraphrase"],
+        llm=llm,
+        validator=validator,
+        k=int(study["paraphrases_per_instruction"]),
+        seed=int(study["seed"]),
+        progress=lambda items, total, desc: tqdm(items, total=total, desc=desc),
+    )
+    write_table(outcome.rows, paths["instructions"], InstructionRow)
+
+    s = outcome.summary
+    rate = f"{100 * s['valid_rate']:.1f}%" if s["valid_rate"] is not None else "n/a"
+    print(
+        f"paraphrase: {s['scenes']} scenes ({sum(skipped.values())} skipped: {skipped or 'none'}), "
+        f"{s['candidates']} candidates, {s['valid']} valid ({rate}); "
+        f"{s['selected_paraphrases']}/{s['instruction_scenes']} instruction-factor scenes got a paraphrase; "
+        f"LLM calls {s['llm_calls']}, cached {s['llm_cache_hits']}; embeddings {cfg.embedding_model} "
+        f"({validator.precision}) -> {paths['instructions']}"
+    )
+    if s["rejections"]:
+        print("  rejected: " + json.dumps(s["rejections"]))
+    if s["instruction_scenes_without_valid_paraphrase"]:
+        print(
+            "  WARNING: no valid paraphrase for "
+            + ", ".join(s["instruction_scenes_without_valid_paraphrase"]),
+            file=sys.stderr,
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
