@@ -30,6 +30,7 @@ class Registry(Generic[T]):
     def __init__(self, kind: str) -> None:
         self.kind = kind
         self._entries: dict[str, T | _LazyEntry] = {}
+        self._extras: dict[str, str] = {}  # kept after a lazy entry resolves
 
     def register(self, name: str) -> Callable[[T], T]:
         """Decorator: ``@POLICIES.register("oracle")``."""
@@ -50,6 +51,8 @@ class Registry(Generic[T]):
         if ":" not in target:
             raise ValueError(f"lazy target must be 'module:attribute', got {target!r}")
         self._entries.setdefault(name, _LazyEntry(target, extra))
+        if extra and isinstance(self._entries[name], _LazyEntry):
+            self._extras.setdefault(name, extra)
 
     def get(self, name: str) -> T:
         try:
@@ -70,8 +73,8 @@ class Registry(Generic[T]):
         return entry
 
     def extra_of(self, name: str) -> str | None:
-        entry = self._entries.get(name)
-        return entry.extra if isinstance(entry, _LazyEntry) else None
+        """The optional extra a lazily registered entry needs (also after it was imported)."""
+        return self._extras.get(name)
 
     def module_of(self, name: str) -> str:
         """The module that defines ``name``'s entry, without importing a lazy one."""

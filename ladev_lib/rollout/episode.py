@@ -135,7 +135,7 @@ def run_episode(
         sim.load(spec, job.seed)
         invalid = sim.invalid_reason()
         low, high = sim.action_bounds()
-        max_steps = info.max_episode_steps or sim.max_steps(spec.task.type)
+        max_steps = info.episode_steps_for(spec.task.type) or sim.max_steps(spec.task.type)
     except ConfigError:
         raise  # the configuration cannot work for any episode (e.g. a control mode the robot lacks)
     except Exception as exc:  # noqa: BLE001 - any simulator failure is this episode's error row

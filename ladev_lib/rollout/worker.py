@@ -101,8 +101,12 @@ class EpisodeWorker:
         key = (robot, info.control_mode, image_size)
         sim = self._sims.get(key)
         if sim is None:
+            sim_config = dict(self.spec.sim_config)
+            if info.control_freq_hz and sim_config.get("control_freq_hz") is None:
+                # The frequency the policy was trained at, unless the study fixes one.
+                sim_config["control_freq_hz"] = round(info.control_freq_hz)
             setup = SimSetup(
-                sim_config=self.spec.sim_config,
+                sim_config=sim_config,
                 robot_config=self.spec.robot_config,
                 robot=robot,
                 control_mode=info.control_mode,
