@@ -21,32 +21,13 @@ from ladev_lib.rollout.identity import episode_id
 from ladev_lib.rollout.jobs import EpisodeJob
 from ladev_lib.scenes import SceneSpec
 
-# EpisodeRow fields that come from the plan, not from running the episode.
-PLAN_FIELDS: tuple[str, ...] = (
-    "episode_id",
-    "study",
-    "scene_id",
-    "instruction_id",
-    "policy",
-    "task",
-    "factor",
-    "level",
-    "num_objects",
-    "object_set",
-    "environment",
-    "instruction_kind",
-    "instruction",
-    "seed",
-)
-
-
 @dataclass(frozen=True)
 class EpisodePlan:
     """One planned episode: the job to run and the row metadata it gets in the table."""
 
     job: EpisodeJob
     meta: dict[str, Any]
-    """Values of :data:`PLAN_FIELDS`."""
+    """The row's study fields (ids, factor, level, instruction, seed, ...); the run adds the rest."""
     scene_robot: str
     known_invalid: str | None = None
     """The compile stage's physical-validity verdict, when it found the scene invalid."""
