@@ -21,6 +21,7 @@ from ladev_lib.rollout.identity import episode_id
 from ladev_lib.rollout.jobs import EpisodeJob
 from ladev_lib.scenes import SceneSpec
 
+
 @dataclass(frozen=True)
 class EpisodePlan:
     """One planned episode: the job to run and the row metadata it gets in the table."""
