@@ -42,6 +42,9 @@ class StudySummary:
     compiled_ok: int = 0
     validity_ok: int = 0
     validity_invalid: int = 0
+    validity_source: str = "none"
+    """Where the physical-validity verdicts come from: "compile", "rollout" (one verdict per
+    scene and policy, since the robot and camera are the policy's), or "none"."""
     basic_instructions: int = 0
     paraphrase_candidates: int = 0
     paraphrases_valid: int = 0
@@ -119,6 +122,16 @@ def summarize_study(
         reasons += _top_reasons(para, "reason", "paraphrase", reasons_per_stage)
     values["episodes"] = episodes.height
     values["by_status"] = dict(episodes.group_by("status").len("count").iter_rows())
+    if values.get("validity_ok", 0) + values.get("validity_invalid", 0) > 0:
+        values["validity_source"] = "compile"
+    elif not episodes.is_empty():
+        # The check ran at the start of each episode, with the policy's robot and camera.
+        per_scene = episodes.group_by(["policy", "scene_id"]).agg(
+            (pl.col("status") == "invalid_scene").any().alias("invalid")
+        )
+        values["validity_invalid"] = per_scene.filter(pl.col("invalid")).height
+        values["validity_ok"] = per_scene.height - values["validity_invalid"]
+        values["validity_source"] = "rollout"
     excluded = episodes.filter(pl.col("status").is_in(["error", "invalid_scene"]))
     reasons += _top_reasons(excluded.with_columns(pl.col("error").fill_null("(no reason given)")),
                             "error", "rollout", 2 * reasons_per_stage)

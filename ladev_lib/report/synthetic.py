@@ -226,6 +226,7 @@ def stage_tables_for(
         ))
     instructions = pl.concat([basic, *para]).with_columns(
         similarity=pl.when(pl.col("kind") == "paraphrase").then(pl.lit(0.8)),
+        canonical_similarity=pl.lit(None, dtype=pl.Float64),
         parsed_task=pl.lit("pick_up"), parsed_source=pl.lit("coke_can"),
         parsed_target=pl.lit(None, dtype=pl.String), llm_call_ids=pl.lit([], dtype=pl.List(pl.String)),
     )

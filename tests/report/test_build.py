@@ -192,3 +192,26 @@ def test_html_escapes_text_from_the_llm(study, tmp_path):
     html = (reports / "report.html").read_text()
     assert "<script>" not in html
     assert "&lt;script&gt;" in html and "two cans &amp; a bowl" in html
+
+
+def test_physical_validity_is_taken_from_rollout_when_compile_did_not_check():
+    from ladev_lib.report.summary import summarize_study
+    from ladev_lib.report.synthetic import CellCounts, episodes_from_counts
+
+    episodes = episodes_from_counts(
+        [
+            CellCounts("oracle", "pick_up", "num_objects", "1", successes=3, invalid=1),
+            CellCounts("grounded", "pick_up", "num_objects", "1", successes=2, failures=2),
+        ]
+    )
+    compiled = pl.DataFrame(
+        {"scene_id": ["a"], "status": ["ok"], "validity": ["not_checked"], "reason": [None],
+         "validity_reason": [None]},
+        schema={"scene_id": pl.String, "status": pl.String, "validity": pl.String,
+                "reason": pl.String, "validity_reason": pl.String},
+    )
+    summary = summarize_study(episodes, None, compiled, None)
+    assert summary.validity_source == "rollout"
+    scenes_per_policy = episodes.group_by(["policy", "scene_id"]).len().height
+    assert summary.validity_invalid == 1
+    assert summary.validity_ok == scenes_per_policy - 1
