@@ -8,6 +8,7 @@ crash. The physical-validity check runs at rollout: ``validity`` is ``not_checke
 
 from __future__ import annotations
 
+import argparse
 import sys
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
@@ -27,8 +28,11 @@ from ladev_lib.scenes.text_to_scene import CompiledScene, SceneCompiler, scene_t
 from ladev_lib.tables import CompiledSceneRow, SceneDesignRow, read_table, rows_of, write_table  # noqa: E402
 
 
-def main() -> int:
-    params = load_params()
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--params", default="params.yaml", help="composed configuration (default: params.yaml)")
+    args = parser.parse_args(argv)
+    params = load_params(args.params)
     paths = params["paths"]
     bounds = SceneBounds.model_validate(params.get("study", {}).get("bounds") or {})
     config = section(params, "compile", CompileConfig)

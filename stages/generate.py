@@ -7,6 +7,7 @@ so a re-run or a grown study makes only the new calls.
 
 from __future__ import annotations
 
+import argparse
 import sys
 from pathlib import Path
 
@@ -23,8 +24,11 @@ from ladev_lib.study.generation import generate_descriptions  # noqa: E402
 from ladev_lib.tables import SceneDesignRow, write_table  # noqa: E402
 
 
-def main() -> int:
-    params = load_params()
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--params", default="params.yaml", help="composed configuration (default: params.yaml)")
+    args = parser.parse_args(argv)
+    params = load_params(args.params)
     paths = params["paths"]
     study = section(params, "study", StudyConfig)
     llm = section(params, "llm", LLMConfig)

@@ -6,20 +6,24 @@ prompts.paraphrase, prompts.parse_instruction, paths.
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 from pathlib import Path
 
-from tqdm import tqdm
+# Run as a script from the repository root: make ladev_lib importable without installing.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import ladev_lib.language.offline_jobs  # noqa: F401  (registers the offline language jobs)
-from ladev_lib.catalog import load_catalog
-from ladev_lib.config import load_params, section
-from ladev_lib.language.config import ParaphraseConfig
-from ladev_lib.language.pipeline import make_validator, paraphrase_scenes, scene_tasks
-from ladev_lib.llm.config import LLMConfig, make_client
-from ladev_lib.llm.prompts import load_prompts
-from ladev_lib.tables import (
+from tqdm import tqdm  # noqa: E402
+
+import ladev_lib.language.offline_jobs  # noqa: E402, F401  (registers the offline language jobs)
+from ladev_lib.catalog import load_catalog  # noqa: E402
+from ladev_lib.config import load_params, section  # noqa: E402
+from ladev_lib.language.config import ParaphraseConfig  # noqa: E402
+from ladev_lib.language.pipeline import make_validator, paraphrase_scenes, scene_tasks  # noqa: E402
+from ladev_lib.llm.config import LLMConfig, make_client  # noqa: E402
+from ladev_lib.llm.prompts import load_prompts  # noqa: E402
+from ladev_lib.tables import (  # noqa: E402
     CompiledSceneRow,
     InstructionRow,
     SceneDesignRow,
@@ -29,8 +33,11 @@ from ladev_lib.tables import (
 )
 
 
-def main(params_path: str = "params.yaml") -> int:
-    params = load_params(params_path)
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--params", default="params.yaml", help="composed configuration (default: params.yaml)")
+    args = parser.parse_args(argv)
+    params = load_params(args.params)
     paths = params["paths"]
     study = params["study"]
     cfg = section(params, "paraphrase", ParaphraseConfig)

@@ -27,7 +27,7 @@ from tests.language.test_llm_jobs import ScriptedBackend
 def _run_stage(repo_root: Path, workdir: Path, monkeypatch) -> None:
     monkeypatch.chdir(workdir)
     stage = runpy.run_path(str(repo_root / "stages/paraphrase.py"), run_name="paraphrase_stage")
-    assert stage["main"]("params.yaml") == 0
+    assert stage["main"](["--params", "params.yaml"]) == 0
 
 
 def test_stage_writes_basic_and_validated_paraphrases(repo_root, tmp_path, monkeypatch, capsys):
