@@ -23,6 +23,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "paraphrase": ("ladev_lib.cli.paraphrase", "Paraphrase an instruction and validate each candidate."),
     "validate-paraphrases": ("ladev_lib.cli.validate_paraphrases", "Validate a CSV of (original, candidate) pairs."),
     "serve-policy": ("ladev_lib.cli.serve_policy", "Serve a policy over the openpi websocket protocol."),
+    "study": ("ladev_lib.cli.study", "Run the whole pipeline for a configuration; sweep with -m (Hydra)."),
     "summary": ("ladev_lib.cli.summary", "Print a study's report location and headline numbers."),
     "config": ("ladev_lib.cli.config", "Print the configuration composed from conf/ (params.yaml)."),
 }

@@ -3,11 +3,8 @@
 from __future__ import annotations
 
 import json
-import os
 import runpy
-import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import polars as pl
@@ -22,6 +19,7 @@ from ladev_lib.llm.config import LLMConfig
 from ladev_lib.tables import InstructionRow, read_table
 from tests.language.conftest import write_stage_inputs
 from tests.language.test_llm_jobs import ScriptedBackend
+from tests.repo_copy import copy_repo, stage_env
 
 
 def _run_stage(repo_root: Path, workdir: Path, monkeypatch) -> None:
@@ -98,21 +96,8 @@ def test_stage_under_dvc_repro(repo_root, tmp_path):
     """`dvc repro paraphrase` in a copy of the repository runs generate -> compile -> paraphrase;
     a second repro does nothing; a changed validation parameter re-runs only the paraphrase
     stage, without new LLM calls."""
-    files = subprocess.run(
-        ["git", "ls-files", "--cached", "--others", "--exclude-standard"],
-        cwd=repo_root, capture_output=True, text=True, check=True,
-    ).stdout.split()
-    copy = tmp_path / "repo"
-    for rel in files:
-        if (repo_root / rel).is_file() and not rel.startswith(("data/", "reports/")):
-            (copy / rel).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(repo_root / rel, copy / rel)
-    env = {**os.environ, "PYTHONPATH": str(copy), "PATH": f"{Path(sys.executable).parent}:{os.environ['PATH']}",
-           "HF_HUB_OFFLINE": "1", "LP_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
-    git = ["git", "-c", "user.email=test@ladev", "-c", "user.name=test"]
-    subprocess.run(["git", "init", "-q"], cwd=copy, check=True)
-    subprocess.run([*git, "add", "-A"], cwd=copy, check=True)
-    subprocess.run([*git, "commit", "-qm", "copy"], cwd=copy, check=True)
+    copy = copy_repo(repo_root, tmp_path / "repo", commit=True)
+    env = stage_env()
 
     def repro() -> str:
         done = subprocess.run(["dvc", "repro", "paraphrase"], cwd=copy, env=env,

@@ -12,7 +12,7 @@ import yaml
 from ladev_lib.scenes.spec import SceneSpec
 from ladev_lib.store import ContentStore
 from ladev_lib.tables import CompiledSceneRow, SceneDesignRow, read_table
-from tests.stages.conftest import BIN, run
+from tests.repo_copy import BIN, run
 
 
 def calls(output: str, stage: str) -> tuple[int, int]:
