@@ -52,6 +52,9 @@ class RayExecutorConfig(BaseModel):
     )
     workers: int = Field(default=2, ge=1, le=4096)
     num_cpus_per_worker: float = Field(default=1.0, gt=0)
+    num_gpus_per_worker: float = Field(
+        default=0.0, ge=0, description="GPUs Ray reserves per actor (a VLA model, GPU rendering)."
+    )
 
 
 class SerialExecutorConfig(BaseModel):

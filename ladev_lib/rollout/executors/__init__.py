@@ -38,6 +38,7 @@ def make_executor(
             workers=config.workers,
             address=config.address,
             num_cpus_per_worker=config.num_cpus_per_worker,
+            num_gpus_per_worker=config.num_gpus_per_worker,
             crash_retries=retries,
             policy_module=policy_module,
             expected_fingerprint=code_fingerprint,

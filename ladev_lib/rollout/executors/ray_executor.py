@@ -107,6 +107,7 @@ class RayExecutor:
         workers: int = 2,
         address: str | None = None,
         num_cpus_per_worker: float = 1.0,
+        num_gpus_per_worker: float = 0.0,
         crash_retries: int = 1,
         policy_module: str | None = None,
         expected_fingerprint: str | None = None,
@@ -114,6 +115,7 @@ class RayExecutor:
         self.workers = workers
         self.address = address
         self.num_cpus_per_worker = num_cpus_per_worker
+        self.num_gpus_per_worker = num_gpus_per_worker
         self.crash_retries = crash_retries
         self.policy_module = policy_module
         self.expected_fingerprint = expected_fingerprint
@@ -145,6 +147,7 @@ class RayExecutor:
         thread_env = {k: os.environ.get(k, v) for k, v in spec.thread_env.items()}
         actor_cls = ray.remote(
             num_cpus=self.num_cpus_per_worker,
+            num_gpus=self.num_gpus_per_worker,
             max_concurrency=2,
             runtime_env={"env_vars": thread_env},
         )(RayEpisodeActor)
