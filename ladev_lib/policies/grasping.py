@@ -15,7 +15,7 @@ All lengths are metres; the gripper numbers are the Panda hand's.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sapien
@@ -41,16 +41,23 @@ PALM_ABOVE_TCP_M = 0.037
 """The palm's underside is this far above the TCP: the deepest an object may enter."""
 PALM_HALF_LENGTH_M = 0.104
 PALM_HALF_WIDTH_M = 0.032
-TABLE_CLEARANCE_M = 0.016
-"""Lowest TCP height above the object's bottom (keeps the fingertips off the table)."""
+TABLE_CLEARANCE_M = 0.012
+"""Lowest TCP height above the object's bottom: the fingertips stay 2.5 mm off the table."""
 NEIGHBOUR_CLEARANCE_M = 0.004
 """Gap kept between the hand and another object."""
 YAW_STEP_DEG = 15
+TILTS_DEG = (0.0, 25.0, -25.0)
+"""Leans of the hand about the closing axis: upright first, leaning away from tall
+neighbours when the arm does not fit beside them upright."""
+TILT_SCORE_PER_RAD = 0.15
+
+
+DOWN = np.array([0.0, 0.0, -1.0])
 
 
 @dataclass(frozen=True)
 class Grasp:
-    """A top-down grasp: TCP position, closing direction and finger opening."""
+    """A grasp: TCP position, closing direction, approach direction and finger opening."""
 
     position: np.ndarray
     """(3,) world TCP position at the grasp."""
@@ -62,27 +69,40 @@ class Grasp:
     """Distance between the pads to open to before descending."""
     score: float
     """Lower is better."""
+    approach: np.ndarray = field(default_factory=lambda: DOWN.copy())
+    """(3,) unit direction the hand moves in to grasp: straight down, or leaning (``tilt``)."""
+
+    @property
+    def tilt_rad(self) -> float:
+        """How far the approach leans from vertical."""
+        return float(np.arccos(np.clip(-self.approach[2], -1.0, 1.0)))
 
     def pose(self) -> sapien.Pose:
-        """TCP pose: approaching straight down, fingers closing along ``closing``."""
-        return top_down_pose(self.position, self.closing)
+        """TCP pose: z axis along ``approach``, fingers closing along ``closing`` (Panda)."""
+        return grasp_pose(self.position, self.closing, self.approach)
 
     def flipped(self) -> Grasp:
         """The same grasp with the hand turned half a turn (the fingers swap sides)."""
-        return Grasp(self.position, -self.closing, self.width_m, self.opening_m, self.score)
+        return replace(self, closing=-self.closing)
+
+
+
+def grasp_pose(position: np.ndarray, closing: np.ndarray, approach: np.ndarray = DOWN) -> sapien.Pose:
+    """TCP pose whose z axis is ``approach`` and y axis ``closing`` (Panda convention)."""
+    a = np.asarray(approach, dtype=float) / np.linalg.norm(approach)
+    c = np.asarray(closing, dtype=float).copy()
+    c -= (c @ a) * a
+    c /= np.linalg.norm(c)
+    ortho = np.cross(c, a)
+    matrix = np.eye(4)
+    matrix[:3, :3] = np.stack([ortho, c, a], axis=1)
+    matrix[:3, 3] = position
+    return sapien.Pose(matrix)
 
 
 def top_down_pose(position: np.ndarray, closing: np.ndarray) -> sapien.Pose:
-    """TCP pose whose z axis points down and y axis along ``closing`` (Panda convention)."""
-    approach = np.array([0.0, 0.0, -1.0])
-    closing = np.asarray(closing, dtype=float).copy()
-    closing[2] = 0.0
-    closing /= np.linalg.norm(closing)
-    ortho = np.cross(closing, approach)
-    matrix = np.eye(4)
-    matrix[:3, :3] = np.stack([ortho, closing, approach], axis=1)
-    matrix[:3, 3] = position
-    return sapien.Pose(matrix)
+    """TCP pose approaching straight down, fingers closing along ``closing``."""
+    return grasp_pose(position, closing, DOWN)
 
 
 def closing_of(pose: sapien.Pose) -> np.ndarray:
@@ -101,27 +121,30 @@ def top_down_grasps(
     obstacles: np.ndarray | None = None,
     current_closing: np.ndarray | None = None,
     support_z: float | None = None,
+    tilts_deg: tuple[float, ...] = TILTS_DEG,
 ) -> list[Grasp]:
-    """Feasible top-down grasps of the object sampled by ``points``, best first.
+    """Feasible grasps from above of the object sampled by ``points``, best first.
 
     ``obstacles`` are points of every other object (for finger clearance);
     ``current_closing`` the gripper's present closing direction (less wrist turn is
     preferred); ``support_z`` the height of what the object rests on (default: its
-    own bottom).
+    own bottom). ``tilts_deg`` are the leans of the hand about the closing axis to
+    consider; a leaning grasp is checked exactly like an upright one, in the frame of
+    the leaning hand.
     """
     from ladev_lib.policies.geometry import footprint_rectangle
 
     pts = np.asarray(points, dtype=float)
-    xy, z = pts[:, :2], pts[:, 2]
-    bottom = float(z.min()) if support_z is None else float(support_z)
-    centre, axes, half = footprint_rectangle(xy)
+    bottom = float(pts[:, 2].min()) if support_z is None else float(support_z)
+    centre, axes, half = footprint_rectangle(pts[:, :2])
     current = np.array([0.0, 1.0]) if current_closing is None else np.asarray(current_closing[:2])
     current = current / (np.linalg.norm(current) + 1e-12)
     obst = None if obstacles is None or len(obstacles) == 0 else np.asarray(obstacles, float)
 
-    # Centres along the long axis: elongated things are held near, not only at, the middle.
-    reach = min(0.03, 0.5 * float(half[0] - half[1]))
-    offsets = np.arange(0.0, reach + 1e-9, 0.01) if reach >= 0.01 else np.zeros(1)
+    # Centres along the long axis: elongated things are held near the middle when they can
+    # be, anywhere along their length when they must (a knife by its handle).
+    reach = float(half[0] - half[1]) if half[0] - half[1] >= 0.01 else 0.0
+    offsets = np.arange(0.0, reach + 1e-9, 0.01)
     offsets = np.unique(np.concatenate([offsets, -offsets]))
     max_width = MAX_OPENING_M - GRASP_CLEARANCE_M
 
@@ -129,20 +152,41 @@ def top_down_grasps(
     side = float(np.arctan2(axes[1][1], axes[1][0]))
     yaws = np.concatenate([np.deg2rad(np.arange(0, 180, YAW_STEP_DEG)), [side, side + np.pi / 2]])
     grasps: list[Grasp] = []
-    for yaw in yaws:
-        c = np.array([np.cos(yaw), np.sin(yaw)])
-        o = np.array([-c[1], c[0]])
-        for off in offsets:
-            grasp = _evaluate(xy, z, centre + off * axes[0], c, o, bottom, max_width, obst)
-            if grasp is None:
-                continue
-            turn = _wrist_turn(c, current)
-            score = 4.0 * abs(off) + 2.0 * grasp.width_m + 0.02 * turn
-            # Of the two equivalent hand orientations, the one nearer the current one.
-            closing = grasp.closing if c @ current >= 0 else -grasp.closing
-            grasps.append(Grasp(grasp.position, closing, grasp.width_m, grasp.opening_m, score))
+    for tilt in np.deg2rad(tilts_deg):
+        for yaw in yaws:
+            c = np.array([np.cos(yaw), np.sin(yaw), 0.0])
+            # Work in the leaning hand's frame: turn the world about the closing axis
+            # (through the object's foot) so that the hand stands upright in it.
+            pivot = np.array([centre[0], centre[1], bottom])
+            rot = _rotation(c, -tilt)
+            p_obj = (pts - pivot) @ rot.T + pivot
+            p_obs = None if obst is None else (obst - pivot) @ rot.T + pivot
+            # The table leans too: keep the lower fingertip corner clear of it.
+            floor = bottom + FINGER_HALF_WIDTH_M * abs(np.sin(tilt))
+            for off in offsets:
+                grasp = _evaluate(
+                    p_obj[:, :2], p_obj[:, 2], centre + off * axes[0], c[:2], np.array([-c[1], c[0]]),
+                    floor, max_width, None if p_obs is None else p_obs,
+                )
+                if grasp is None:
+                    continue
+                position = (grasp.position - pivot) @ rot + pivot  # back to the world
+                approach = DOWN @ rot
+                turn = _wrist_turn(c[:2], current)
+                score = (4.0 * abs(off) + 2.0 * grasp.width_m + 0.02 * turn
+                         + TILT_SCORE_PER_RAD * abs(float(tilt)))
+                # Of the two equivalent hand orientations, the one nearer the current one.
+                closing = c if c[:2] @ current >= 0 else -c
+                grasps.append(Grasp(position, closing, grasp.width_m, grasp.opening_m, score, approach))
     grasps.sort(key=lambda g: g.score)
     return grasps
+
+
+def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rotation matrix about a unit ``axis`` by ``angle`` (right hand)."""
+    x, y, z = axis / np.linalg.norm(axis)
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
 
 
 def _evaluate(

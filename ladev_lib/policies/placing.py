@@ -79,13 +79,12 @@ class Placement:
     """Set when the release height is decided by the geometry (on / in)."""
 
 
-def finger_points(closing: np.ndarray, opening_m: float) -> np.ndarray:
-    """Points filling both open fingers (pad and knuckle), relative to the TCP (world axes)."""
-    c = np.asarray(closing, dtype=float).copy()
-    c[2] = 0.0
-    c /= np.linalg.norm(c)
-    o = np.array([-c[1], c[0], 0.0])
-    up = np.array([0.0, 0.0, 1.0])
+def finger_points(tcp_rotation: np.ndarray, opening_m: float) -> np.ndarray:
+    """Points filling both open fingers (pad and knuckle), relative to the TCP (world axes).
+
+    ``tcp_rotation`` is the TCP's 3x3 orientation: its y axis is the closing direction
+    and its z axis points from the palm to the fingertips.
+    """
     sideways = np.linspace(-FINGER_HALF_WIDTH_M, FINGER_HALF_WIDTH_M, 3)
     parts = []
     for thickness, z0, z1 in (
@@ -93,10 +92,12 @@ def finger_points(closing: np.ndarray, opening_m: float) -> np.ndarray:
         (FINGER_KNUCKLE_THICKNESS_M, FINGER_KNUCKLE_ABOVE_TCP_M, PALM_ABOVE_TCP_M),
     ):
         across = np.linspace(opening_m / 2, opening_m / 2 + thickness, 4)
-        heights = np.linspace(z0, z1, 5)
-        grid = np.array(np.meshgrid(across, sideways, heights, indexing="ij")).reshape(3, -1).T
+        above = np.linspace(z0, z1, 5)
+        grid = np.array(np.meshgrid(sideways, across, above, indexing="ij")).reshape(3, -1).T
         for sign in (1.0, -1.0):
-            parts.append(sign * grid[:, :1] * c + grid[:, 1:2] * o + grid[:, 2:3] * up)
+            # TCP frame: x sideways, y closing, z towards the fingertips (so "above" is -z).
+            local = np.stack([grid[:, 0], sign * grid[:, 1], -grid[:, 2]], axis=1)
+            parts.append(local @ np.asarray(tcp_rotation, dtype=float).T)
     return np.vstack(parts)
 
 

@@ -322,8 +322,8 @@ class TaskSkill:
         chosen = self._choose_grasp(grasps, geoms, obstacles)
         if chosen is None:
             raise SkillFailure(
-                f"none of {min(len(grasps), GRASP_CANDIDATES)} grasps of {self.source} is reachable "
-                "without collision"
+                f"none of {min(len(grasps), 2 * GRASP_CANDIDATES)} grasps of {self.source} is "
+                "reachable without collision"
             )
         grasp, approach, descend = chosen
         self._note(f"grasp at {np.round(grasp.position, 3).tolist()} width {grasp.width_m:.3f} "
@@ -363,13 +363,18 @@ class TaskSkill:
         qpos = self._qpos()
         tallest = max((g.top_z for n, g in geoms.items() if n != self.source), default=src.top_z)
         arm_obstacles = _away_from_hand(obstacles, src.points.mean(axis=0))
-        options = [g for best in grasps[:GRASP_CANDIDATES] for g in (best, best.flipped())]
+        # Upright grasps first; leaning ones (away from a tall neighbour) when none works.
+        upright = [g for g in grasps if g.tilt_rad < 1e-3][:GRASP_CANDIDATES]
+        leaning = [g for g in grasps if g.tilt_rad >= 1e-3][:GRASP_CANDIDATES]
+        options = [g for best in upright + leaning for g in (best, best.flipped())]
         for grasp in options:
             pose = grasp.pose()
+            # Along a leaning approach, the way back up to clear the tallest object is longer.
+            high = (max(tallest, src.top_z) + 0.06 - grasp.position[2]) / max(0.5, -grasp.approach[2])
             self.planner.set_obstacles(arm_obstacles)
             for at_grasp in self.planner.ik_solutions(qpos, pose, avoid=True)[:IK_SOLUTIONS]:
-                for height in (PRE_GRASP_HEIGHT_M, max(tallest, src.top_z) + 0.06 - grasp.position[2]):
-                    pre = sapien.Pose([0.0, 0.0, height]) * pose
+                for height in (PRE_GRASP_HEIGHT_M, high):
+                    pre = pose * sapien.Pose([0.0, 0.0, -height])  # back along the approach
                     above = self.planner.local_ik(at_grasp, pre)
                     if above is None:
                         continue
@@ -400,7 +405,7 @@ class TaskSkill:
     def _held(self, src: ObjectGeometry) -> HeldObject:
         tcp = self._tcp()
         opening = self._release_opening(src)
-        fingers = finger_points(closing_of(tcp), opening)
+        fingers = finger_points(tcp.to_transformation_matrix()[:3, :3], opening)
         return HeldObject(src.points - np.asarray(tcp.p), fingers)
 
     def _release_opening(self, src: ObjectGeometry) -> float:
