@@ -37,6 +37,8 @@ TIP_BELOW_TCP_M = 0.01
 """Fingertips reach this far below the TCP (panda_hand_tcp)."""
 PAD_HALF_HEIGHT_M = 0.009
 """Half the height of the finger pads around the TCP."""
+MIN_PAD_CONTACT_M = 0.008
+"""The object must span this much of the pads' width (or all of its own) to be held."""
 PALM_ABOVE_TCP_M = 0.037
 """The palm's underside is this far above the TCP: the deepest an object may enter."""
 PALM_HALF_LENGTH_M = 0.104
@@ -49,7 +51,7 @@ YAW_STEP_DEG = 15
 TILTS_DEG = (0.0, 25.0, -25.0)
 """Leans of the hand about the closing axis: upright first, leaning away from tall
 neighbours when the arm does not fit beside them upright."""
-TILT_SCORE_PER_RAD = 0.15
+TILT_SCORE_PER_RAD = 1.0
 
 
 DOWN = np.array([0.0, 0.0, -1.0])
@@ -153,21 +155,23 @@ def top_down_grasps(
     yaws = np.concatenate([np.deg2rad(np.arange(0, 180, YAW_STEP_DEG)), [side, side + np.pi / 2]])
     grasps: list[Grasp] = []
     for tilt in np.deg2rad(tilts_deg):
+        floor = bottom + FINGER_HALF_WIDTH_M * abs(np.sin(tilt))  # the lower fingertip corner
         for yaw in yaws:
             c = np.array([np.cos(yaw), np.sin(yaw), 0.0])
-            # Work in the leaning hand's frame: turn the world about the closing axis
-            # (through the object's foot) so that the hand stands upright in it.
-            pivot = np.array([centre[0], centre[1], bottom])
+            o = np.array([-c[1], c[0]])
             rot = _rotation(c, -tilt)
-            p_obj = (pts - pivot) @ rot.T + pivot
-            p_obs = None if obst is None else (obst - pivot) @ rot.T + pivot
-            # The table leans too: keep the lower fingertip corner clear of it.
-            floor = bottom + FINGER_HALF_WIDTH_M * abs(np.sin(tilt))
             for off in offsets:
-                grasp = _evaluate(
-                    p_obj[:, :2], p_obj[:, 2], centre + off * axes[0], c[:2], np.array([-c[1], c[0]]),
-                    floor, max_width, None if p_obs is None else p_obs,
-                )
+                grasp_xy = centre + off * axes[0]
+                # Judge a leaning grasp in the leaning hand's frame: turn the world about the
+                # closing axis through the grasp's foot, so the hand stands upright in it
+                # (and the table stays level under the fingers).
+                pivot = np.array([grasp_xy[0], grasp_xy[1], bottom])
+                if tilt:
+                    p_obj = (pts - pivot) @ rot.T + pivot
+                    p_obs = None if obst is None else (obst - pivot) @ rot.T + pivot
+                else:
+                    p_obj, p_obs = pts, obst
+                grasp = _evaluate(p_obj[:, :2], p_obj[:, 2], grasp_xy, c[:2], o, floor, max_width, p_obs)
                 if grasp is None:
                     continue
                 position = (grasp.position - pivot) @ rot + pivot  # back to the world
@@ -215,8 +219,8 @@ def _evaluate(
     for tcp_z in np.arange(deepest, highest + 1e-9, 0.005):
         swept = in_slab & (z >= tcp_z - TIP_BELOW_TCP_M)
         pads = in_slab & (np.abs(z - tcp_z) <= PAD_HALF_HEIGHT_M)
-        if not pads.any():
-            continue
+        if not pads.any() or np.ptp(along_o[pads]) < MIN_PAD_CONTACT_M:
+            continue  # nothing, or only an edge, between the pads
         lo, hi = float(along_c[swept].min()), float(along_c[swept].max())
         if hi - lo <= max_width:
             break
