@@ -36,6 +36,8 @@ TARGET_GAP_M = 0.012
 """move_near: gap between the released object (and fingers) and the target."""
 OTHER_GAP_M = 0.03
 """move_near: gap kept to every other object."""
+MIN_TRAVEL_M = 0.05
+"""move_near: the object's centre moves at least this far."""
 CLOSEST_MARGIN_M = 0.015
 """move_near: the object must end this much closer to the target than to any other."""
 FITTED_YAWS = 4
@@ -246,6 +248,8 @@ def place_near(
             if any(np.linalg.norm(spot - o.centre) < d_target + CLOSEST_MARGIN_M for o in rest):
                 continue
             travel = float(np.linalg.norm(spot - source_xy))
+            if travel < MIN_TRAVEL_M:
+                continue  # it must visibly move (SimplerEnv counts moves over 3 cm)
             score = d_target + 0.1 * travel + 0.01 * abs(yaw)
             found.append((score, Placement(spot - centre, yaw)))
     found.sort(key=lambda item: item[0])

@@ -60,6 +60,8 @@ LIFT_HEIGHT_M = 0.12
 RELEASE_GAP_M = 0.005
 """move_near: the object is let go this far above the table."""
 RETREAT_HEIGHT_M = 0.08
+MOVED_M = 0.03
+"""move_near: the object must have moved this far (SimplerEnv's threshold)."""
 NEAR_MARGIN_M = 0.08
 """move_near counts as near within both half diagonals plus this (SimplerEnv allows 5-10 cm)."""
 GRASP_CANDIDATES = 8
@@ -136,7 +138,7 @@ class TaskSkill:
         start = self._geometries()
         self.table_z = min(g.bottom_z for g in start.values())
         self.region = region or _region_around(start)
-        self._start_bottom = start[source].bottom_z
+        self._start_centre = start[source].footprint()[0]
         self._emitted = 0
         self._failed_grasps: list[Grasp] = []
         self._actions = self._run()
@@ -508,6 +510,9 @@ class TaskSkill:
         assert self.target is not None
         centre = {n: g.footprint()[0] for n, g in geoms.items()}
         half_diag = {n: float(np.linalg.norm(g.footprint()[2])) for n, g in geoms.items()}
+        moved = float(np.linalg.norm(centre[self.source] - self._start_centre))
+        if moved < MOVED_M:
+            return f"{self.source} moved only {moved:.3f} m"
         d_target = float(np.linalg.norm(centre[self.source] - centre[self.target]))
         if d_target > half_diag[self.source] + half_diag[self.target] + NEAR_MARGIN_M:
             return f"{self.source} ended {d_target:.3f} m from {self.target}, not near it"
