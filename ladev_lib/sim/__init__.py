@@ -1,12 +1,27 @@
 """The simulation core: a ManiSkill3 environment that builds, renders and judges a SceneSpec.
 
     from ladev_lib.sim import make_env
-    env = make_env(spec, sim_config)               # gym.make("LADEV-Scene-v1", ...)
+    env = make_env(spec, sim_config)                  # gym.make("LADEV-Scene-v1", ...)
     obs, info = env.reset(seed=spec.seed)
+    obs, info = env.reset(seed=other.seed, options={"spec": other.model_dump(mode="json")})
     u = env.unwrapped
-    u.evaluate(); u.policy_image(); u.object_poses()
+    u.spec               # the SceneSpec simulated (robot override applied)
+    u.objects            # instance name -> ManiSkill Actor
+    u.object_sources     # instance name -> "mesh" | "standin"
+    u.built              # instance name -> BuiltObject (collision box in the actor frame)
+    u.evaluate()         # task predicates and "success" (torch bool, shape (1,)); u.predicates(): bools
+    u.policy_image()     # (H, W, 3) uint8 from the policy camera (real background when active)
+    u.overview_image()   # a wider render-only view
+    u.object_poses()     # name -> [x, y, z, qw, qx, qy, qz], world frame
+    u.workspace_to_world(x, y)  # SceneSpec's workspace frame -> world (table top at z = 0)
+    u.profile            # the RobotProfile: base pose, camera, reach, control modes, episode steps
+    u.agent              # the ManiSkill agent
+    u.spawn_report       # spawn overlaps, spawn and settled poses (ladev_lib.sim.validity reads it)
 
-Importing this package is cheap; ManiSkill loads when an env is made.
+Modules: ``env`` (the environment), ``robots`` (embodiments), ``agents`` (ManiSkill agents
+for the asset-pack robots), ``objects`` (meshes and stand-ins), ``tasks`` (predicates),
+``validity`` (physical-validity verdicts), ``render`` (pictures), ``config`` (SimConfig,
+RobotConfig). Importing this package is cheap; ManiSkill loads when an env is made.
 """
 
 from __future__ import annotations

@@ -42,6 +42,7 @@ from ladev_lib.errors import ConfigError
 from ladev_lib.scenes.spec import SceneSpec, parse_scene_spec
 from ladev_lib.sim import agents as _agents  # noqa: F401 - registers the pack robots
 from ladev_lib.sim.config import SimConfig
+from ladev_lib.sim.geometry import quat_to_matrix, yaw_quat
 from ladev_lib.sim.objects import BuiltObject, ObjectSource, build_object
 from ladev_lib.sim.robots import RobotProfile, get_robot
 from ladev_lib.sim.tasks import get_task
@@ -67,21 +68,6 @@ class SpawnReport:
     settled_speeds: dict[str, tuple[float, float]] = field(default_factory=dict)
     """name -> (linear m/s, angular rad/s) after settling."""
     settle_steps: int = 0
-
-
-def _yaw_quat(yaw: float) -> np.ndarray:
-    return np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
-
-
-def _quat_to_matrix(q: np.ndarray) -> np.ndarray:
-    w, x, y, z = q
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
-    )
 
 
 class SimulatedSpec(SceneSpec):
@@ -152,7 +138,7 @@ class LadevSceneEnv(BaseEnv):
         self.objects, self.object_sources, self.built = {}, {}, {}
         self.spawn_report = SpawnReport()
         self._lights: list[tuple[Any, float]] = []
-        self._overlay: np.ndarray | None = None
+        self._overlay: torch.Tensor | None = None
         kwargs.setdefault("sim_backend", self.sim_cfg.sim_backend)
         kwargs["render_backend"] = resolve_render_backend(
             kwargs.get("render_backend", self.sim_cfg.render_backend)
@@ -242,7 +228,7 @@ class LadevSceneEnv(BaseEnv):
         return [CameraConfig(OVERVIEW_CAMERA, pose=pose, width=w, height=h, fov=0.9, near=0.01, far=20)]
 
     def _load_agent(self, options: dict[str, Any]) -> None:
-        pose = sapien.Pose(p=list(self.profile.base_xyz), q=_yaw_quat(self.profile.base_yaw).tolist())
+        pose = sapien.Pose(p=list(self.profile.base_xyz), q=yaw_quat(self.profile.base_yaw).tolist())
         super()._load_agent(options, pose)
 
     def _load_scene(self, options: dict[str, Any]) -> None:
@@ -292,7 +278,8 @@ class LadevSceneEnv(BaseEnv):
 
         with Image.open(path) as img:
             size = (self.image_size[0], self.image_size[1])
-            self._overlay = np.asarray(img.convert("RGB").resize(size, Image.Resampling.BILINEAR))
+            pixels = np.array(img.convert("RGB").resize(size, Image.Resampling.BILINEAR))
+            self._overlay = torch.from_numpy(pixels)
 
     def _load_lighting(self, options: dict[str, Any]) -> None:
         light = self.profile.lighting
@@ -323,7 +310,7 @@ class LadevSceneEnv(BaseEnv):
         for placement in self.spec.objects:
             built, actor = self.built[placement.name], self.objects[placement.name]
             p = self.profile.workspace_to_world(placement.x, placement.y, built.bottom_z + SPAWN_GAP_M)
-            q = _yaw_quat(self.profile.workspace_yaw + math.radians(placement.yaw_deg))
+            q = yaw_quat(self.profile.workspace_yaw + math.radians(placement.yaw_deg))
             actor.set_pose(Pose.create_from_pq(p=torch.tensor(p, dtype=torch.float32)[None], q=torch.tensor(q, dtype=torch.float32)[None]))
             actor.set_linear_velocity(torch.zeros(1, 3))
             actor.set_angular_velocity(torch.zeros(1, 3))
@@ -347,20 +334,25 @@ class LadevSceneEnv(BaseEnv):
             raise ConfigError(f"robot {self.profile.name}: no initial position for joints {missing}")
         qpos = torch.tensor([[self.profile.init_qpos[n] for n in names]], dtype=torch.float32)
         robot.set_pose(
-            sapien.Pose(p=list(self.profile.base_xyz), q=_yaw_quat(self.profile.base_yaw).tolist())
+            sapien.Pose(p=list(self.profile.base_xyz), q=yaw_quat(self.profile.base_yaw).tolist())
         )
         self.agent.reset(qpos)
         # Hold the robot where it starts while the objects settle (drive targets persist
         # from the previous episode otherwise).
         robot.set_joint_drive_targets(qpos, joints=robot.active_joints)
 
-    def _physics_step(self) -> None:
-        self.scene.px.step()
+    def _physics_step(self, n: int = 1) -> None:
+        """``n`` physics steps with no control, keeping GPU buffers in sync with poses set here."""
+        if self.gpu_sim_enabled:
+            self.scene._gpu_apply_all()
+        for _ in range(n):
+            self.scene.px.step()
+        if self.gpu_sim_enabled:
+            self.scene._gpu_fetch_all()
 
     def _settle(self, seconds: float) -> int:
         n = round(seconds * self.sim_freq)
-        for _ in range(n):
-            self._physics_step()
+        self._physics_step(n)
         return n
 
     def _anything_moving(self) -> bool:
@@ -412,7 +404,7 @@ class LadevSceneEnv(BaseEnv):
         return self.profile.world_to_workspace(p)
 
     def _box_center(self, pose: np.ndarray, name: str) -> np.ndarray:
-        out: np.ndarray = pose[:3] + _quat_to_matrix(pose[3:]) @ self.built[name].box_center
+        out: np.ndarray = pose[:3] + quat_to_matrix(pose[3:]) @ self.built[name].box_center
         return out
 
     def box_center_world(self, name: str) -> np.ndarray:
@@ -431,7 +423,7 @@ class LadevSceneEnv(BaseEnv):
 
     def point_in_object_frame(self, name: str, p_world: np.ndarray) -> np.ndarray:
         pose = self._pose_np(self.objects[name])
-        out: np.ndarray = _quat_to_matrix(pose[3:]).T @ (np.asarray(p_world) - pose[:3])
+        out: np.ndarray = quat_to_matrix(pose[3:]).T @ (np.asarray(p_world) - pose[:3])
         return out
 
     def contact_force(self, a: Any, b: Any) -> float:
@@ -461,6 +453,10 @@ class LadevSceneEnv(BaseEnv):
             return {"success": torch.zeros(1, dtype=torch.bool)}
         return get_task(self.spec.task.type).evaluate(self)
 
+    def predicates(self) -> dict[str, bool]:
+        """``evaluate()`` as plain booleans (for episode rows and printing)."""
+        return {k: bool(v.reshape(-1)[0]) for k, v in self.evaluate().items()}
+
     def _get_obs_extra(self, info: dict[str, Any]) -> dict[str, Any]:
         tcp = self.agent.robot.links_map.get(self.profile.tcp_link)
         return {"tcp_pose": tcp.pose.raw_pose} if tcp is not None else {}
@@ -475,6 +471,25 @@ class LadevSceneEnv(BaseEnv):
         ids += [a.per_scene_id for a in self.objects.values()]
         return torch.unique(torch.cat([i.cpu() for i in ids]))
 
+    def _with_overlay(self, rgb: torch.Tensor, seg: torch.Tensor) -> torch.Tensor:
+        """Replace background pixels (not robot, not objects) of (1, H, W, 3) rgb by the real image."""
+        assert self._overlay is not None
+        background = ~torch.isin(seg[..., 0].cpu(), self._keep_ids())
+        out = rgb.cpu().clone()
+        out[background] = self._overlay[background[0]].to(out.dtype)
+        return out.to(rgb.device)
+
+    def _get_obs_sensor_data(self, apply_texture_transforms: bool = True) -> dict[str, Any]:
+        # Image observation modes see what policy_image() returns: overlay included.
+        obs: dict[str, Any] = super()._get_obs_sensor_data(apply_texture_transforms)
+        cam = obs.get(POLICY_CAMERA)
+        if self.overlay_active and cam is not None and "rgb" in cam:
+            seg = self.scene.sensors[POLICY_CAMERA].get_obs(
+                rgb=False, depth=False, position=False, segmentation=True
+            )["segmentation"]
+            cam["rgb"] = self._with_overlay(cam["rgb"], seg)
+        return obs
+
     def policy_image(self, overlay: bool | None = None) -> np.ndarray:
         """(H, W, 3) uint8 RGB from the policy camera, with the real background when active."""
         if POLICY_CAMERA not in self.scene.sensors:
@@ -484,14 +499,9 @@ class LadevSceneEnv(BaseEnv):
         cam = self.scene.sensors[POLICY_CAMERA]
         cam.capture()
         obs = cam.get_obs(rgb=True, depth=False, position=False, segmentation=use_overlay)
-        rgb: np.ndarray = obs["rgb"][0].cpu().numpy()
-        if use_overlay:
-            seg = obs["segmentation"][0, ..., 0].cpu()
-            background = ~torch.isin(seg, self._keep_ids()).numpy()
-            rgb = rgb.copy()
-            assert self._overlay is not None
-            rgb[background] = self._overlay[background]
-        return rgb
+        rgb = self._with_overlay(obs["rgb"], obs["segmentation"]) if use_overlay else obs["rgb"]
+        out: np.ndarray = rgb[0].cpu().numpy()
+        return out
 
     def policy_segmentation(self) -> np.ndarray:
         """(H, W) int per-scene ids seen by the policy camera (for visibility checks)."""

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ladev_lib.registry import Registry
+from ladev_lib.sim.geometry import look_at, quat_mul, quat_to_matrix
 
 TASK_NAMES = ("pick_up", "move_near", "put_on", "put_in")
 
@@ -123,53 +124,6 @@ class RobotProfile:
         return float(np.hypot(world_xy[0] - self.base_xyz[0], world_xy[1] - self.base_xyz[1]))
 
 
-def _quat_mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, float, float]:
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return (
-        aw * bw - ax * bx - ay * by - az * bz,
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-    )
-
-
-def _rotate(q: tuple[float, ...], v: tuple[float, float, float]) -> tuple[float, float, float]:
-    w, x, y, z = q
-    r = np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
-        ]
-    )
-    out = r @ np.asarray(v)
-    return (float(out[0]), float(out[1]), float(out[2]))
-
-
-def look_at(eye: tuple[float, float, float], target: tuple[float, float, float]) -> tuple[float, float, float, float]:
-    """Camera quaternion (SAPIEN convention, wxyz) looking from ``eye`` at ``target``, no roll."""
-    fwd = np.asarray(target, dtype=float) - np.asarray(eye, dtype=float)
-    fwd /= np.linalg.norm(fwd)
-    left = np.cross([0.0, 0.0, 1.0], fwd)
-    left /= np.linalg.norm(left)
-    up = np.cross(fwd, left)
-    m = np.stack([fwd, left, up], axis=1)
-    w = math.sqrt(max(0.0, 1.0 + m[0, 0] + m[1, 1] + m[2, 2])) / 2
-    if w > 1e-6:
-        return (w, (m[2, 1] - m[1, 2]) / (4 * w), (m[0, 2] - m[2, 0]) / (4 * w), (m[1, 0] - m[0, 1]) / (4 * w))
-    # 180-degree turn: fall back on the largest diagonal element
-    i = int(np.argmax(np.diag(m)))
-    j, k = (i + 1) % 3, (i + 2) % 3
-    s = math.sqrt(max(0.0, 1.0 + m[i, i] - m[j, j] - m[k, k])) * 2
-    q = [0.0, 0.0, 0.0, 0.0]
-    q[0] = (m[k, j] - m[j, k]) / s
-    q[1 + i] = s / 4
-    q[1 + j] = (m[j, i] + m[i, j]) / s
-    q[1 + k] = (m[k, i] + m[i, k]) / s
-    return (q[0], q[1], q[2], q[3])
-
-
 # --- Panda ----------------------------------------------------------------------
 _PANDA_WS = (-0.1, 0.0, 0.0)
 # Across the table, facing the robot, like ManiSkill's standard Panda "base_camera" (an
@@ -224,7 +178,7 @@ _WIDOWX_BASE = (0.147, 0.028, 0.870)
 _WIDOWX_BASE_Q = (0.0, 0.0, 0.0, 1.0)  # yaw pi
 _WIDOWX_CAM_LOCAL_P = (0.0, -0.16, 0.36)
 _WIDOWX_CAM_LOCAL_Q = (0.8992917, -0.09263245, 0.35892478, 0.23209205)
-_wx_cam_p = np.add(_WIDOWX_BASE, _rotate(_WIDOWX_BASE_Q, _WIDOWX_CAM_LOCAL_P))
+_wx_cam_p = np.add(_WIDOWX_BASE, quat_to_matrix(_WIDOWX_BASE_Q) @ np.asarray(_WIDOWX_CAM_LOCAL_P))
 WIDOWX = RobotProfile(
     name="widowx",
     agent_uid="ladev_widowx",
@@ -246,7 +200,7 @@ WIDOWX = RobotProfile(
     control_freq_hz=5,
     policy_camera=PinholeCamera(
         p=(float(_wx_cam_p[0]), float(_wx_cam_p[1]), float(_wx_cam_p[2])),
-        q=_quat_mul(_WIDOWX_BASE_Q, _WIDOWX_CAM_LOCAL_Q),
+        q=quat_mul(_WIDOWX_BASE_Q, _WIDOWX_CAM_LOCAL_Q),
         native_size=(640, 480),
         fx=623.588,
         fy=623.588,

@@ -97,6 +97,9 @@ def test_camera_offset_follows_the_documented_directions(build: Any) -> None:
     fwd_base = base.to_transformation_matrix()[:3, 0]
     fwd_moved = moved.to_transformation_matrix()[:3, 0]
     assert fwd_moved[2] < fwd_base[2]  # positive pitch tilts the view down
+    panned = build(make_spec(BASE, PICK, camera={"rotation_deg": [0, 0, 5]})).policy_camera_pose()
+    left_base = base.to_transformation_matrix()[:3, 1]
+    assert panned.to_transformation_matrix()[:3, 0] @ left_base > 0.05  # positive yaw pans left
 
 
 def test_robot_override_and_bad_control_mode(build: Any) -> None:
@@ -110,17 +113,21 @@ def test_robot_override_and_bad_control_mode(build: Any) -> None:
         u.reset(options={"spec": spec.model_copy(update={"robot": "widowx"}).model_dump(mode="json")})
 
 
-def test_state_only_env_has_no_camera() -> None:
+def test_state_only_env_with_robot_override() -> None:
     from ladev_lib.sim import make_env
 
-    env = make_env(make_spec(BASE, PICK), image_size=None, control_mode="pd_ee_delta_pose")
+    widowx_spec = make_spec(BASE, PICK, robot="widowx")  # simulated on Panda instead
+    env = make_env(widowx_spec, image_size=None, control_mode="pd_ee_delta_pose", robot="panda")
     try:
         env.reset(seed=0)
         u = env.unwrapped
-        assert u.agent.control_mode == "pd_ee_delta_pose"
+        assert u.spec.robot == "panda" and u.agent.control_mode == "pd_ee_delta_pose"
         with pytest.raises(ConfigError, match="no policy camera"):
             u.policy_image()
         obs, *_ = env.step(np.zeros(env.action_space.shape, dtype=np.float32))
         assert "tcp_pose" in obs["extra"]
+        assert u.predicates() == {"is_grasped": False, "lifted": False, "success": False}
+        env.reset(options={"spec": widowx_spec.model_dump(mode="json")})  # the override persists
+        assert u.spec.robot == "panda"
     finally:
         env.close()

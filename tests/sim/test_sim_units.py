@@ -12,7 +12,8 @@ from ladev_lib.catalog import load_catalog
 from ladev_lib.config import compose_config, section
 from ladev_lib.errors import ConfigError, UnknownNameError
 from ladev_lib.sim.config import RobotConfig, SimConfig
-from ladev_lib.sim.robots import ROBOTS, episode_steps, get_robot, look_at
+from ladev_lib.sim.geometry import look_at
+from ladev_lib.sim.robots import ROBOTS, episode_steps, get_robot
 
 
 @pytest.mark.parametrize("robot", ["panda", "widowx", "google_robot"])
