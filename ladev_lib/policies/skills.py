@@ -1,9 +1,9 @@
 """Motion skills for the Panda: pick an object and put it on, in, or near another.
 
-    skill = TaskSkill(env.unwrapped, "put_on", "green_cube", "plate")
+    skill = plan_task(env.unwrapped, "put_on", "green_cube", "plate")
     for action in skill:              # one pd_joint_pos action per control step
         env.step(action)
-    skill.outcome                     # status "done" | "failed", reason, attempts
+    skill.outcome                     # status "done" | "failed", reason, attempts, log
 
 ``TaskSkill`` is a small state machine written as a generator: each phase
 (approach, descend, grasp, lift, carry, lower, release, retreat) is planned from
@@ -551,6 +551,22 @@ class _GripperMap:
     def action(self, opening: float) -> float:
         joint = float(np.clip(opening / 2, self.lower, self.upper))
         return 2 * (joint - self.lower) / (self.upper - self.lower) - 1
+
+
+def plan_task(
+    env: Any,
+    task_type: str,
+    source: str,
+    target: str | None = None,
+    **options: Any,
+) -> TaskSkill:
+    """The skill that does ``task_type`` with objects ``source`` (and ``target``) in ``env``.
+
+    ``env`` is the unwrapped scene env, made with ``control_mode="pd_joint_pos"``;
+    ``options`` go to :class:`TaskSkill` (``region``, ``max_attempts``). Iterate the
+    result for actions, stepping the env after each; read ``outcome`` at the end.
+    """
+    return TaskSkill(env, task_type, source, target, **options)
 
 
 def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
