@@ -37,6 +37,12 @@ TIP_BELOW_TCP_M = 0.01
 """Fingertips reach this far below the TCP (panda_hand_tcp)."""
 PAD_HALF_HEIGHT_M = 0.009
 """Half the height of the finger pads around the TCP."""
+MAX_TAPER_M = 0.006
+"""Grasps where the object narrows by more than this across the pads are tried last."""
+WIDER_ABOVE_M = 0.006
+"""How much wider (per side) the object may be above the pads than between them."""
+FACE_CONTACT_M = 0.004
+"""Each pad must meet the object over this much of its height (a face, not an edge)."""
 MIN_PAD_CONTACT_M = 0.008
 """The object must span this much of the pads' width (or all of its own) to be held."""
 PALM_ABOVE_TCP_M = 0.037
@@ -48,9 +54,12 @@ TABLE_CLEARANCE_M = 0.012
 NEIGHBOUR_CLEARANCE_M = 0.004
 """Gap kept between the hand and another object."""
 YAW_STEP_DEG = 15
-TILTS_DEG = (0.0, 25.0, -25.0)
+TILTS_DEG = (0.0, 25.0, -25.0, 90.0, -90.0)
 """Leans of the hand about the closing axis: upright first, leaning away from tall
-neighbours when the arm does not fit beside them upright."""
+neighbours when the arm does not fit beside them upright, and from the side (90 degrees)
+for tall things whose top is too narrow or too slanted to hold."""
+TABLE_PATCH_M = 0.16
+"""Half size of the patch of table leaning hands are checked against."""
 TILT_SCORE_PER_RAD = 1.0
 
 
@@ -73,6 +82,14 @@ class Grasp:
     """Lower is better."""
     approach: np.ndarray = field(default_factory=lambda: DOWN.copy())
     """(3,) unit direction the hand moves in to grasp: straight down, or leaning (``tilt``)."""
+    taper_m: float = 0.0
+    """How much narrower the object is at the pads' upper edge than at their lower edge.
+    A squeeze on a surface that narrows towards the palm pushes the object out of the hand
+    (a bottle's neck, a ball above its equator): such grasps are kept for last."""
+
+    @property
+    def tapered(self) -> bool:
+        return self.taper_m > MAX_TAPER_M
 
     @property
     def tilt_rad(self) -> float:
@@ -154,36 +171,60 @@ def top_down_grasps(
     side = float(np.arctan2(axes[1][1], axes[1][0]))
     yaws = np.concatenate([np.deg2rad(np.arange(0, 180, YAW_STEP_DEG)), [side, side + np.pi / 2]])
     grasps: list[Grasp] = []
+    table = _table_points(centre, bottom)
     for tilt in np.deg2rad(tilts_deg):
-        floor = bottom + FINGER_HALF_WIDTH_M * abs(np.sin(tilt))  # the lower fingertip corner
+        side_grasp = abs(tilt) > np.pi / 4
+        # Upright, the table is kept off by the fingertip clearance; leaning, it is an
+        # obstacle like any other (the lower fingertip corner, the palm of a side grasp).
+        floor = bottom if tilt == 0 else -np.inf
+        tilted_obstacles = table if obst is None else np.vstack([obst, table])
+        # Side grasps hold the object by its middle part; the others come down from above.
+        heights = _side_heights(pts, bottom) if side_grasp else [0.0]
         for yaw in yaws:
             c = np.array([np.cos(yaw), np.sin(yaw), 0.0])
             o = np.array([-c[1], c[0]])
             rot = _rotation(c, -tilt)
-            for off in offsets:
-                grasp_xy = centre + off * axes[0]
+            for off in [0.0] if side_grasp else offsets:
+                foot = centre + off * axes[0]
                 # Judge a leaning grasp in the leaning hand's frame: turn the world about the
-                # closing axis through the grasp's foot, so the hand stands upright in it
-                # (and the table stays level under the fingers).
-                pivot = np.array([grasp_xy[0], grasp_xy[1], bottom])
+                # closing axis through the grasp's foot, so the hand stands upright in it.
+                pivot = np.array([foot[0], foot[1], bottom])
                 if tilt:
                     p_obj = (pts - pivot) @ rot.T + pivot
-                    p_obs = None if obst is None else (obst - pivot) @ rot.T + pivot
+                    p_obs = (tilted_obstacles - pivot) @ rot.T + pivot
                 else:
                     p_obj, p_obs = pts, obst
-                grasp = _evaluate(p_obj[:, :2], p_obj[:, 2], grasp_xy, c[:2], o, floor, max_width, p_obs)
-                if grasp is None:
-                    continue
-                position = (grasp.position - pivot) @ rot + pivot  # back to the world
-                approach = DOWN @ rot
-                turn = _wrist_turn(c[:2], current)
-                score = (4.0 * abs(off) + 2.0 * grasp.width_m + 0.02 * turn
-                         + TILT_SCORE_PER_RAD * abs(float(tilt)))
-                # Of the two equivalent hand orientations, the one nearer the current one.
-                closing = c if c[:2] @ current >= 0 else -c
-                grasps.append(Grasp(position, closing, grasp.width_m, grasp.opening_m, score, approach))
+                for height in heights:
+                    grasp_xy = (pivot + rot @ np.array([0.0, 0.0, height]))[:2]
+                    grasp = _evaluate(p_obj[:, :2], p_obj[:, 2], grasp_xy, c[:2], o, floor,
+                                      max_width, p_obs)
+                    if grasp is None:
+                        continue
+                    position = (grasp.position - pivot) @ rot + pivot  # back to the world
+                    approach = DOWN @ rot
+                    turn = _wrist_turn(c[:2], current)
+                    score = (4.0 * abs(off) + 2.0 * grasp.width_m + 0.02 * turn
+                             + TILT_SCORE_PER_RAD * abs(float(tilt)))
+                    # Of the two equivalent hand orientations, the one nearer the current one.
+                    closing = c if c[:2] @ current >= 0 else -c
+                    grasps.append(Grasp(position, closing, grasp.width_m, grasp.opening_m, score,
+                                        approach, grasp.taper_m))
     grasps.sort(key=lambda g: g.score)
     return grasps
+
+
+def _table_points(centre: np.ndarray, z: float) -> np.ndarray:
+    """A patch of the table around an object, as obstacle points for leaning hands."""
+    ticks = np.arange(-TABLE_PATCH_M, TABLE_PATCH_M + 1e-9, 0.008)
+    gx, gy = np.meshgrid(ticks, ticks)
+    return np.stack([gx.ravel() + centre[0], gy.ravel() + centre[1], np.full(gx.size, z - 0.001)], axis=1)
+
+
+def _side_heights(points: np.ndarray, bottom: float) -> list[float]:
+    """Heights above the object's foot to hold it at from the side (middle part, palm clear)."""
+    tall = float(points[:, 2].max()) - bottom
+    lowest = PALM_HALF_WIDTH_M + NEIGHBOUR_CLEARANCE_M + 0.004  # the palm stays off the table
+    return sorted({round(max(lowest, f * tall), 3) for f in (0.5, 0.35, 0.65)})
 
 
 def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
@@ -222,20 +263,38 @@ def _evaluate(
         if not pads.any() or np.ptp(along_o[pads]) < MIN_PAD_CONTACT_M:
             continue  # nothing, or only an edge, between the pads
         lo, hi = float(along_c[swept].min()), float(along_c[swept].max())
-        if hi - lo <= max_width:
-            break
-    else:
-        return None
-    tcp_z = float(tcp_z)
-    width = hi - lo
-    mid = 0.5 * (lo + hi)
-    grasp_xy = centre + mid * c
-    opening = min(MAX_OPENING_M, width + OPENING_MARGIN_M)
-    if obstacles is not None and _fingers_hit(obstacles, grasp_xy, c, o, tcp_z, opening):
-        return None
-    position = np.array([grasp_xy[0], grasp_xy[1], tcp_z])
-    return Grasp(position, np.array([c[0], c[1], 0.0]), width, opening, 0.0)
+        if hi - lo > max_width:
+            continue  # too wide here: higher up, where a ball is narrower
+        pad_lo, pad_hi = float(along_c[pads].min()), float(along_c[pads].max())
+        if pad_lo - lo > WIDER_ABOVE_M or hi - pad_hi > WIDER_ABOVE_M:
+            continue  # wider above the pads: the fingers would close on that, not the pads
+        if not (_face_contact(along_c[pads], z[pads], pad_lo)
+                and _face_contact(along_c[pads], z[pads], pad_hi)):
+            continue  # a pad would touch a corner or a slope, not a face
+        grasp_xy = centre + 0.5 * (lo + hi) * c
+        opening = min(MAX_OPENING_M, hi - lo + OPENING_MARGIN_M)
+        if obstacles is not None and _fingers_hit(obstacles, grasp_xy, c, o, float(tcp_z), opening):
+            continue
+        position = np.array([grasp_xy[0], grasp_xy[1], float(tcp_z)])
+        taper = _taper(along_c[pads], z[pads], float(tcp_z))
+        return Grasp(position, np.array([c[0], c[1], 0.0]), hi - lo, opening, 0.0, taper_m=taper)
+    return None
 
+
+def _taper(along_c: np.ndarray, z: np.ndarray, tcp_z: float) -> float:
+    """Width at the pads' lower edge minus width at their upper edge (z up, in the hand frame)."""
+    lower, upper = z < tcp_z - 0.003, z > tcp_z + 0.003
+    if not lower.any() or not upper.any():
+        return 0.0
+    return float(np.ptp(along_c[lower]) - np.ptp(along_c[upper]))
+
+
+def _face_contact(along_c: np.ndarray, z: np.ndarray, extreme: float) -> bool:
+    """True if the object's surface where a pad meets it (at ``extreme`` along the closing
+    direction) runs along the pad for a few millimetres, rather than touching it at an
+    edge: the points within 3 mm of the extreme span at least 4 mm of the pad's height."""
+    touching = np.abs(along_c - extreme) <= 0.003
+    return bool(touching.any() and np.ptp(z[touching]) >= FACE_CONTACT_M)
 
 def _fingers_hit(
     obstacles: np.ndarray,

@@ -15,7 +15,7 @@ covers what the hand carries down: the object and the fingers around it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.spatial import ConvexHull, Delaunay, cKDTree
@@ -27,6 +27,8 @@ from ladev_lib.policies.grasping import (
     FINGER_KNUCKLE_THICKNESS_M,
     FINGER_PAD_THICKNESS_M,
     PALM_ABOVE_TCP_M,
+    PALM_HALF_LENGTH_M,
+    PALM_HALF_WIDTH_M,
     TIP_BELOW_TCP_M,
 )
 
@@ -54,16 +56,18 @@ class HeldObject:
     """(N, 3) the held object's surface, minus the TCP position."""
     finger_points: np.ndarray
     """(M, 3) the open fingers at release, minus the TCP position."""
+    palm_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    """(K, 3) the hand's palm, minus the TCP position (checked on the way down only)."""
 
     def turned(self, yaw: float) -> HeldObject:
         """The same hand turned by ``yaw`` about the vertical through the TCP."""
         c, s = np.cos(yaw), np.sin(yaw)
         rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        return HeldObject(self.object_points @ rot.T, self.finger_points @ rot.T)
+        return HeldObject(self.object_points @ rot.T, self.finger_points @ rot.T, self.palm_points @ rot.T)
 
     @property
     def all_points(self) -> np.ndarray:
-        return np.vstack([self.object_points, self.finger_points])
+        return np.vstack([self.object_points, self.finger_points, self.palm_points])
 
     @property
     def bottom_below_tcp(self) -> float:
@@ -101,6 +105,16 @@ def finger_points(tcp_rotation: np.ndarray, opening_m: float) -> np.ndarray:
             local = np.stack([grid[:, 0], sign * grid[:, 1], -grid[:, 2]], axis=1)
             parts.append(local @ np.asarray(tcp_rotation, dtype=float).T)
     return np.vstack(parts)
+
+
+def palm_points(tcp_rotation: np.ndarray) -> np.ndarray:
+    """Points on the underside and sides of the palm, relative to the TCP (world axes)."""
+    across = np.linspace(-PALM_HALF_LENGTH_M, PALM_HALF_LENGTH_M, 9)
+    sideways = np.linspace(-PALM_HALF_WIDTH_M, PALM_HALF_WIDTH_M, 3)
+    above = np.linspace(PALM_ABOVE_TCP_M, PALM_ABOVE_TCP_M + 0.06, 3)
+    grid = np.array(np.meshgrid(sideways, across, above, indexing="ij")).reshape(3, -1).T
+    local = np.stack([grid[:, 0], grid[:, 1], -grid[:, 2]], axis=1)  # TCP z points to the fingertips
+    return local @ np.asarray(tcp_rotation, dtype=float).T
 
 
 def lowest_free_height(

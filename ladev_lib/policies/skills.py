@@ -34,6 +34,7 @@ from ladev_lib.policies.placing import (
     Placement,
     finger_points,
     lowest_free_height,
+    palm_points,
     place_in,
     place_near,
     place_on,
@@ -140,7 +141,8 @@ class TaskSkill:
         self.region = region or _region_around(start)
         self._start_centre = start[source].footprint()[0]
         self._emitted = 0
-        self._failed_grasps: list[Grasp] = []
+        self._failed_grasps: list[tuple[Grasp, bool]] = []
+        """Grasps that failed, and whether the object slipped out of them."""
         self._actions = self._run()
 
     # -- iteration -----------------------------------------------------------
@@ -317,14 +319,14 @@ class TaskSkill:
         obstacles = np.vstack(others) if others else np.zeros((0, 3))
         grasps = [
             g for g in top_down_grasps(src.points, obstacles, closing_of(self._tcp()))
-            if not any(_same_grasp(g, bad) for bad in self._failed_grasps)
+            if not any(_same_grasp(g, bad, slipped) for bad, slipped in self._failed_grasps)
         ]
         if not grasps:
             raise SkillFailure(f"no top-down grasp of {self.source} fits the gripper here", final=True)
         chosen = self._choose_grasp(grasps, geoms, obstacles)
         if chosen is None:
             raise SkillFailure(
-                f"none of {min(len(grasps), 2 * GRASP_CANDIDATES)} grasps of {self.source} is "
+                f"none of {min(len(grasps), 4 * GRASP_CANDIDATES)} grasps of {self.source} is "
                 "reachable without collision"
             )
         grasp, approach, descend = chosen
@@ -336,7 +338,7 @@ class TaskSkill:
         yield from self._follow(descend, precise=True)
         off = float(np.linalg.norm(np.asarray(self._tcp().p) - grasp.position))
         if off > REACHED_TOLERANCE_M:
-            self._failed_grasps.append(grasp)
+            self._failed_grasps.append((grasp, False))
             raise SkillFailure(f"the hand stopped {off:.3f} m short of the grasp of {self.source}")
         self._phase("grasp")
         yield from self._gripper_steps(self._gripper.min_opening, CLOSE_STEPS)
@@ -346,7 +348,7 @@ class TaskSkill:
         up = sapien.Pose([0.0, 0.0, self._lift_height(geoms, depth) - float(tcp.p[2])]) * tcp
         yield from self._follow(self._straight(up, "lift", obstacles, held=src))
         if not self._holding():
-            self._failed_grasps.append(grasp)
+            self._failed_grasps.append((grasp, True))
             raise SkillFailure(f"grasp of {self.source} did not hold (width {grasp.width_m:.3f} m)")
 
     def _choose_grasp(self, grasps: list[Grasp], geoms: dict[str, ObjectGeometry],
@@ -365,10 +367,14 @@ class TaskSkill:
         qpos = self._qpos()
         tallest = max((g.top_z for n, g in geoms.items() if n != self.source), default=src.top_z)
         arm_obstacles = _away_from_hand(obstacles, src.points.mean(axis=0))
-        # Upright grasps first; leaning ones (away from a tall neighbour) when none works.
-        upright = [g for g in grasps if g.tilt_rad < 1e-3][:GRASP_CANDIDATES]
-        leaning = [g for g in grasps if g.tilt_rad >= 1e-3][:GRASP_CANDIDATES]
-        options = [g for best in upright + leaning for g in (best, best.flipped())]
+        # Upright grasps first; leaning ones (away from a tall neighbour) when none works;
+        # then from the side; grasps on a taper (a bottle's neck) only when nothing else works.
+        firm = [g for g in grasps if not g.tapered]
+        upright = [g for g in firm if g.tilt_rad < 1e-3][:GRASP_CANDIDATES]
+        leaning = [g for g in firm if 1e-3 <= g.tilt_rad < np.pi / 4][:GRASP_CANDIDATES]
+        side = [g for g in firm if g.tilt_rad >= np.pi / 4][:GRASP_CANDIDATES]
+        tapered = [g for g in grasps if g.tapered][:GRASP_CANDIDATES]
+        options = [g for best in upright + leaning + side + tapered for g in (best, best.flipped())]
         for grasp in options:
             pose = grasp.pose()
             # Along a leaning approach, the way back up to clear the tallest object is longer.
@@ -407,8 +413,9 @@ class TaskSkill:
     def _held(self, src: ObjectGeometry) -> HeldObject:
         tcp = self._tcp()
         opening = self._release_opening(src)
-        fingers = finger_points(tcp.to_transformation_matrix()[:3, :3], opening)
-        return HeldObject(src.points - np.asarray(tcp.p), fingers)
+        rotation = tcp.to_transformation_matrix()[:3, :3]
+        return HeldObject(src.points - np.asarray(tcp.p), finger_points(rotation, opening),
+                          palm_points(rotation))
 
     def _release_opening(self, src: ObjectGeometry) -> float:
         # Open a little wider than the object, not fully: the fingers stay clear of neighbours.
@@ -581,9 +588,14 @@ def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
     return points[~near]
 
 
-def _same_grasp(a: Grasp, b: Grasp) -> bool:
-    """Nearly the same grasp (position within 1 cm, closing within ~15 degrees, either sign)."""
-    return bool(np.linalg.norm(a.position - b.position) < 0.01 and abs(a.closing @ b.closing) > 0.96)
+def _same_grasp(a: Grasp, b: Grasp, slipped: bool) -> bool:
+    """Too like grasp ``b`` (which failed) to be worth trying: the same spot and direction;
+    after a slip also any grasp from above at the same height on the object (it has the
+    same shape there wherever it rolled to: a tapered neck that let go will let go again)."""
+    same_spot = np.linalg.norm(a.position - b.position) < 0.01 and abs(a.closing @ b.closing) > 0.96
+    from_above = a.tilt_rad < np.pi / 4 and b.tilt_rad < np.pi / 4
+    same_height = from_above and abs(a.position[2] - b.position[2]) < 0.015
+    return bool(same_spot or (slipped and same_height))
 
 
 def _yaw_quat(yaw: float) -> np.ndarray:

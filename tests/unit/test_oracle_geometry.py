@@ -199,3 +199,19 @@ def test_place_near_finds_nothing_when_the_only_room_is_closer_to_another_object
     target = box((0.05, 0.05, 0.05))
     region = ((-0.05, 0.05), (-0.05, 0.05))  # no room beside the target inside this region
     assert place_near(held, np.zeros(2), target, {}, region) == []
+
+
+def test_bottle_neck_grasps_are_marked_tapered_and_the_body_is_held_from_the_side() -> None:
+    body = trimesh.creation.cylinder(radius=0.03, height=0.14)
+    body.apply_translation([0.0, 0.0, 0.07])
+    neck = trimesh.creation.cone(radius=0.03, height=0.06)  # narrows from 6 cm to a point
+    neck.apply_translation([0.0, 0.0, 0.14])
+    bottle = surface_points(trimesh.util.concatenate([body, neck]), 3000)
+    grasps = top_down_grasps(bottle)
+    from_above = [g for g in grasps if g.tilt_rad < 0.1]
+    side = [g for g in grasps if g.tilt_rad > 1.5 and not g.tapered]
+    assert from_above and all(g.tapered for g in from_above), "the neck narrows into the palm"
+    assert side, "the straight body can be held from the side"
+    best = side[0]
+    assert abs(best.approach[2]) < 1e-6, "a side grasp approaches horizontally"
+    assert 0.04 < best.position[2] < 0.13 and best.width_m <= MAX_OPENING_M
