@@ -36,7 +36,7 @@ YAW_OPTIONS_RAD = (0.0, np.pi / 2, -np.pi / 2)
 """Turns of the wrist allowed between grasp and release (turning the held object)."""
 TARGET_GAP_M = 0.012
 """move_near: gap between the released object (and fingers) and the target."""
-OTHER_GAP_M = 0.03
+OTHER_GAP_M = 0.02
 """move_near: gap kept to every other object."""
 MIN_TRAVEL_M = 0.05
 """move_near: the object's centre moves at least this far."""
