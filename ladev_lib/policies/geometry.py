@@ -100,7 +100,7 @@ class ObjectGeometry:
     def of_actor(cls, name: str, actor: Any, count: int = SURFACE_SAMPLES) -> ObjectGeometry:
         body = body_of(actor)
         local = surface_points(body_mesh(body), count)
-        return cls(name, transform_points(body.get_pose(), local))
+        return cls(name, transform_points(body.get_entity_pose(), local))
 
     @property
     def bottom_z(self) -> float:

@@ -19,7 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 from ladev_lib.policies.base import Observation, Policy, PolicyInfo, PolicyStep
-from ladev_lib.policies.skills import SkillOutcome, TaskSkill
+from ladev_lib.policies.motion import SkillOutcome
+from ladev_lib.policies.skills import TaskSkill
 from ladev_lib.scenes.spec import SceneBounds
 
 ORACLE_MAX_EPISODE_STEPS = 400

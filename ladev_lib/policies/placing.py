@@ -15,7 +15,7 @@ covers what the hand carries down: the object and the fingers around it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.spatial import ConvexHull, Delaunay, cKDTree
@@ -27,6 +27,8 @@ from ladev_lib.policies.grasping import (
     FINGER_KNUCKLE_THICKNESS_M,
     FINGER_PAD_THICKNESS_M,
     PALM_ABOVE_TCP_M,
+    PALM_HALF_LENGTH_M,
+    PALM_HALF_WIDTH_M,
     TIP_BELOW_TCP_M,
 )
 
@@ -34,8 +36,10 @@ YAW_OPTIONS_RAD = (0.0, np.pi / 2, -np.pi / 2)
 """Turns of the wrist allowed between grasp and release (turning the held object)."""
 TARGET_GAP_M = 0.012
 """move_near: gap between the released object (and fingers) and the target."""
-OTHER_GAP_M = 0.03
+OTHER_GAP_M = 0.02
 """move_near: gap kept to every other object."""
+MIN_TRAVEL_M = 0.05
+"""move_near: the object's centre moves at least this far."""
 CLOSEST_MARGIN_M = 0.015
 """move_near: the object must end this much closer to the target than to any other."""
 FITTED_YAWS = 4
@@ -52,16 +56,18 @@ class HeldObject:
     """(N, 3) the held object's surface, minus the TCP position."""
     finger_points: np.ndarray
     """(M, 3) the open fingers at release, minus the TCP position."""
+    palm_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    """(K, 3) the hand's palm, minus the TCP position (checked on the way down only)."""
 
     def turned(self, yaw: float) -> HeldObject:
         """The same hand turned by ``yaw`` about the vertical through the TCP."""
         c, s = np.cos(yaw), np.sin(yaw)
         rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        return HeldObject(self.object_points @ rot.T, self.finger_points @ rot.T)
+        return HeldObject(self.object_points @ rot.T, self.finger_points @ rot.T, self.palm_points @ rot.T)
 
     @property
     def all_points(self) -> np.ndarray:
-        return np.vstack([self.object_points, self.finger_points])
+        return np.vstack([self.object_points, self.finger_points, self.palm_points])
 
     @property
     def bottom_below_tcp(self) -> float:
@@ -79,13 +85,12 @@ class Placement:
     """Set when the release height is decided by the geometry (on / in)."""
 
 
-def finger_points(closing: np.ndarray, opening_m: float) -> np.ndarray:
-    """Points filling both open fingers (pad and knuckle), relative to the TCP (world axes)."""
-    c = np.asarray(closing, dtype=float).copy()
-    c[2] = 0.0
-    c /= np.linalg.norm(c)
-    o = np.array([-c[1], c[0], 0.0])
-    up = np.array([0.0, 0.0, 1.0])
+def finger_points(tcp_rotation: np.ndarray, opening_m: float) -> np.ndarray:
+    """Points filling both open fingers (pad and knuckle), relative to the TCP (world axes).
+
+    ``tcp_rotation`` is the TCP's 3x3 orientation: its y axis is the closing direction
+    and its z axis points from the palm to the fingertips.
+    """
     sideways = np.linspace(-FINGER_HALF_WIDTH_M, FINGER_HALF_WIDTH_M, 3)
     parts = []
     for thickness, z0, z1 in (
@@ -93,11 +98,23 @@ def finger_points(closing: np.ndarray, opening_m: float) -> np.ndarray:
         (FINGER_KNUCKLE_THICKNESS_M, FINGER_KNUCKLE_ABOVE_TCP_M, PALM_ABOVE_TCP_M),
     ):
         across = np.linspace(opening_m / 2, opening_m / 2 + thickness, 4)
-        heights = np.linspace(z0, z1, 5)
-        grid = np.array(np.meshgrid(across, sideways, heights, indexing="ij")).reshape(3, -1).T
+        above = np.linspace(z0, z1, 5)
+        grid = np.array(np.meshgrid(sideways, across, above, indexing="ij")).reshape(3, -1).T
         for sign in (1.0, -1.0):
-            parts.append(sign * grid[:, :1] * c + grid[:, 1:2] * o + grid[:, 2:3] * up)
+            # TCP frame: x sideways, y closing, z towards the fingertips (so "above" is -z).
+            local = np.stack([grid[:, 0], sign * grid[:, 1], -grid[:, 2]], axis=1)
+            parts.append(local @ np.asarray(tcp_rotation, dtype=float).T)
     return np.vstack(parts)
+
+
+def palm_points(tcp_rotation: np.ndarray) -> np.ndarray:
+    """Points on the underside and sides of the palm, relative to the TCP (world axes)."""
+    across = np.linspace(-PALM_HALF_LENGTH_M, PALM_HALF_LENGTH_M, 9)
+    sideways = np.linspace(-PALM_HALF_WIDTH_M, PALM_HALF_WIDTH_M, 3)
+    above = np.linspace(PALM_ABOVE_TCP_M, PALM_ABOVE_TCP_M + 0.06, 3)
+    grid = np.array(np.meshgrid(sideways, across, above, indexing="ij")).reshape(3, -1).T
+    local = np.stack([grid[:, 0], grid[:, 1], -grid[:, 2]], axis=1)  # TCP z points to the fingertips
+    return local @ np.asarray(tcp_rotation, dtype=float).T
 
 
 def lowest_free_height(
@@ -245,6 +262,8 @@ def place_near(
             if any(np.linalg.norm(spot - o.centre) < d_target + CLOSEST_MARGIN_M for o in rest):
                 continue
             travel = float(np.linalg.norm(spot - source_xy))
+            if travel < MIN_TRAVEL_M:
+                continue  # it must visibly move (SimplerEnv counts moves over 3 cm)
             score = d_target + 0.1 * travel + 0.01 * abs(yaw)
             found.append((score, Placement(spot - centre, yaw)))
     found.sort(key=lambda item: item[0])

@@ -1,9 +1,9 @@
 """Motion skills for the Panda: pick an object and put it on, in, or near another.
 
-    skill = TaskSkill(env.unwrapped, "put_on", "green_cube", "plate")
+    skill = plan_task(env.unwrapped, "put_on", "green_cube", "plate")
     for action in skill:              # one pd_joint_pos action per control step
         env.step(action)
-    skill.outcome                     # status "done" | "failed", reason, attempts
+    skill.outcome                     # status "done" | "failed", reason, attempts, log
 
 ``TaskSkill`` is a small state machine written as a generator: each phase
 (approach, descend, grasp, lift, carry, lower, release, retreat) is planned from
@@ -21,7 +21,6 @@ grounded policy from language).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -29,16 +28,18 @@ import sapien
 
 from ladev_lib.policies.geometry import ObjectGeometry
 from ladev_lib.policies.grasping import OPENING_MARGIN_M, Grasp, closing_of, top_down_grasps
+from ladev_lib.policies.motion import ArmMotion, SkillFailure
 from ladev_lib.policies.placing import (
     HeldObject,
     Placement,
     finger_points,
     lowest_free_height,
+    palm_points,
     place_in,
     place_near,
     place_on,
 )
-from ladev_lib.policies.planner import BRISK_PATH_STEPS, ArmPath, ArmPlanner
+from ladev_lib.policies.planner import ArmPath
 
 TaskType = Literal["pick_up", "move_near", "put_on", "put_in"]
 TASK_TYPES: tuple[str, ...] = ("pick_up", "move_near", "put_on", "put_in")
@@ -59,7 +60,8 @@ LIFT_HEIGHT_M = 0.12
 """pick_up lifts the object's bottom this far."""
 RELEASE_GAP_M = 0.005
 """move_near: the object is let go this far above the table."""
-RETREAT_HEIGHT_M = 0.08
+MOVED_M = 0.03
+"""move_near: the object must have moved this far (SimplerEnv's threshold)."""
 NEAR_MARGIN_M = 0.08
 """move_near counts as near within both half diagonals plus this (SimplerEnv allows 5-10 cm)."""
 GRASP_CANDIDATES = 8
@@ -70,38 +72,9 @@ CLOSE_STEPS = 10
 OPEN_STEPS = 6
 HOLD_STEPS = 8
 SETTLE_STEPS = 10
-MAX_SETTLE_STEPS = 20
-JOINT_TOLERANCE_RAD = 0.02
-PRECISE_TOLERANCE_RAD = 0.004
-PRECISE_SPEED_RAD_S = 0.02
 
 
-@dataclass
-class SkillOutcome:
-    """How a skill ended (or where it is)."""
-
-    status: Literal["running", "done", "failed"] = "running"
-    reason: str = ""
-    phase: str = "start"
-    attempts: int = 0
-    log: list[str] = field(default_factory=list)
-    phase_steps: dict[str, int] = field(default_factory=dict)
-    """Actions emitted per phase (all attempts together)."""
-
-
-class SkillFailure(Exception):
-    """A phase that cannot be planned or did not work; the message says why.
-
-    ``final`` marks failures another attempt cannot change (the scene is as it was:
-    no grasp fits, no free spot); the skill then stops instead of retrying.
-    """
-
-    def __init__(self, message: str, final: bool = False):
-        super().__init__(message)
-        self.final = final
-
-
-class TaskSkill:
+class TaskSkill(ArmMotion):
     """Solve one task in a ManiSkill Panda env, one ``pd_joint_pos`` action at a time."""
 
     def __init__(
@@ -122,23 +95,18 @@ class TaskSkill:
         for role, name in (("source", source), ("target", target)):
             if name is not None and name not in objects:
                 raise KeyError(f"{role} {name!r} is not in the scene (objects: {', '.join(objects)})")
-        self.env = env
-        self.agent = env.agent
+        super().__init__(env)
         self.task_type = task_type
         self.source = source
         self.target = target
         self.max_attempts = max_attempts
-        self.outcome = SkillOutcome()
-        self.planner = ArmPlanner(self.agent, env.control_timestep)
-        self._gripper = _GripperMap.of(self.agent)
-        self._arm_target = self._qpos()[: self.planner.n_arm]
-        self._gripper_action = self._gripper.action(self._gripper.max_opening)
         start = self._geometries()
         self.table_z = min(g.bottom_z for g in start.values())
         self.region = region or _region_around(start)
-        self._start_bottom = start[source].bottom_z
+        self._start_centre = start[source].footprint()[0]
         self._emitted = 0
-        self._failed_grasps: list[Grasp] = []
+        self._failed_grasps: list[tuple[Grasp, bool]] = []
+        """Grasps that failed, and whether the object slipped out of them."""
         self._actions = self._run()
 
     # -- iteration -----------------------------------------------------------
@@ -152,88 +120,8 @@ class TaskSkill:
         steps[self.outcome.phase] = steps.get(self.outcome.phase, 0) + 1
         return action
 
-    def hold_action(self) -> np.ndarray:
-        """The action that keeps the arm and gripper where they were last sent."""
-        return self._action()
-
-    # -- state ---------------------------------------------------------------
-    def _qpos(self) -> np.ndarray:
-        return np.asarray(self.agent.robot.get_qpos()[0].cpu().numpy(), dtype=float)
-
-    def _qvel(self) -> np.ndarray:
-        return np.asarray(self.agent.robot.get_qvel()[0].cpu().numpy(), dtype=float)
-
-    def _tcp(self) -> sapien.Pose:
-        return self.agent.tcp.pose.sp
-
-    def _geometries(self) -> dict[str, ObjectGeometry]:
-        return {n: ObjectGeometry.of_actor(n, a) for n, a in self.env.objects.items()}
-
     def _holding(self) -> bool:
         return bool(self.agent.is_grasping(self.env.objects[self.source])[0])
-
-    def _note(self, text: str) -> None:
-        self.outcome.log.append(f"[{self.outcome.phase}] {text}")
-
-    # -- action streams ------------------------------------------------------
-    def _action(self) -> np.ndarray:
-        return np.concatenate([self._arm_target, [self._gripper_action]]).astype(np.float32)
-
-    def _follow(self, path: ArmPath, precise: bool = False) -> Iterator[np.ndarray]:
-        """Send the path's joint targets, then wait for the arm to catch up.
-
-        ``precise``: wait until the arm has (nearly) stopped at the end, as before
-        closing or opening the gripper: a hand still moving pushes what it lets go.
-        """
-        for q in path.qpos:
-            self._arm_target = np.asarray(q, dtype=float)
-            yield self._action()
-        tolerance = PRECISE_TOLERANCE_RAD if precise else JOINT_TOLERANCE_RAD
-        for _ in range(MAX_SETTLE_STEPS):  # let the PD controller catch up
-            error = np.max(np.abs(self._qpos()[: self.planner.n_arm] - self._arm_target))
-            speed = np.max(np.abs(self._qvel()[: self.planner.n_arm]))
-            if error < tolerance and (not precise or speed < PRECISE_SPEED_RAD_S):
-                break
-            yield self._action()
-
-    def _gripper_steps(self, opening: float, steps: int) -> Iterator[np.ndarray]:
-        self._gripper_action = self._gripper.action(opening)
-        for _ in range(steps):
-            yield self._action()
-
-    def _wait(self, steps: int) -> Iterator[np.ndarray]:
-        for _ in range(steps):
-            yield self._action()
-
-    def _plan_from(self, qpos: np.ndarray, goal: sapien.Pose, *, avoid: bool, what: str) -> ArmPath:
-        path = self.planner.plan(qpos, goal, avoid)
-        if path is None:
-            raise SkillFailure(f"no collision-free path to {what} at {np.round(goal.p, 3).tolist()}")
-        self._note(f"{what}: {path.method}, {len(path.qpos)} steps")
-        return path
-
-    def _straight(self, goal: sapien.Pose, what: str, obstacles: np.ndarray,
-                  held: ObjectGeometry | None = None) -> ArmPath:
-        """Straight to ``goal``; around the obstacles (with what is held) if straight is blocked."""
-        path = self.planner.screw(self._qpos(), goal, avoid=False)
-        if path is None or len(path.qpos) > BRISK_PATH_STEPS:
-            # Joint limits or a near-singular stretch on the straight line: go around.
-            self.planner.set_obstacles(obstacles)
-            if held is not None:
-                self._attach(held)
-            around = self.planner.rrt(self._qpos(), goal, avoid=True)
-            self.planner.detach()
-            if around is not None and (path is None or len(around.qpos) < len(path.qpos)):
-                path = around
-        if path is None:
-            raise SkillFailure(f"no path to {what} at {np.round(goal.p, 3).tolist()}")
-        self._note(f"{what}: {path.method}, {len(path.qpos)} steps")
-        return path
-
-    def _padded(self, arm_q: np.ndarray) -> np.ndarray:
-        q = self._qpos()
-        q[: self.planner.n_arm] = arm_q
-        return q
 
     # -- the task ------------------------------------------------------------
     def _run(self) -> Iterator[np.ndarray]:
@@ -272,13 +160,6 @@ class TaskSkill:
         self.outcome.reason = reason or "gave up"
         return None
 
-    def _phase(self, name: str) -> None:
-        self.outcome.phase = name
-
-    def _finish(self) -> None:
-        self.outcome.status = "done"
-        self._phase("done")
-
     def _set_down(self) -> Iterator[np.ndarray]:
         """Put the held object back down below the hand (after a failed attempt), let go."""
         self._phase("set_down")
@@ -299,13 +180,6 @@ class TaskSkill:
         yield from self._gripper_steps(self._gripper.max_opening, OPEN_STEPS)
         yield from self._retreat()
 
-    def _retreat(self) -> Iterator[np.ndarray]:
-        self._phase("retreat")
-        up = sapien.Pose([0.0, 0.0, RETREAT_HEIGHT_M]) * self._tcp()
-        path = self.planner.screw(self._qpos(), up, avoid=False)
-        if path is not None:
-            yield from self._follow(path)
-
     # -- pick ----------------------------------------------------------------
     def _pick(self) -> Iterator[np.ndarray]:
         self._phase("approach")
@@ -315,15 +189,15 @@ class TaskSkill:
         obstacles = np.vstack(others) if others else np.zeros((0, 3))
         grasps = [
             g for g in top_down_grasps(src.points, obstacles, closing_of(self._tcp()))
-            if not any(_same_grasp(g, bad) for bad in self._failed_grasps)
+            if not any(_same_grasp(g, bad, slipped) for bad, slipped in self._failed_grasps)
         ]
         if not grasps:
-            raise SkillFailure(f"no top-down grasp of {self.source} fits the gripper here", final=True)
+            raise SkillFailure(f"no grasp of {self.source} fits the gripper here", final=True)
         chosen = self._choose_grasp(grasps, geoms, obstacles)
         if chosen is None:
             raise SkillFailure(
-                f"none of {min(len(grasps), GRASP_CANDIDATES)} grasps of {self.source} is reachable "
-                "without collision"
+                f"none of {min(len(grasps), 4 * GRASP_CANDIDATES)} grasps of {self.source} is "
+                "reachable without collision"
             )
         grasp, approach, descend = chosen
         self._note(f"grasp at {np.round(grasp.position, 3).tolist()} width {grasp.width_m:.3f} "
@@ -334,7 +208,7 @@ class TaskSkill:
         yield from self._follow(descend, precise=True)
         off = float(np.linalg.norm(np.asarray(self._tcp().p) - grasp.position))
         if off > REACHED_TOLERANCE_M:
-            self._failed_grasps.append(grasp)
+            self._failed_grasps.append((grasp, False))
             raise SkillFailure(f"the hand stopped {off:.3f} m short of the grasp of {self.source}")
         self._phase("grasp")
         yield from self._gripper_steps(self._gripper.min_opening, CLOSE_STEPS)
@@ -344,7 +218,7 @@ class TaskSkill:
         up = sapien.Pose([0.0, 0.0, self._lift_height(geoms, depth) - float(tcp.p[2])]) * tcp
         yield from self._follow(self._straight(up, "lift", obstacles, held=src))
         if not self._holding():
-            self._failed_grasps.append(grasp)
+            self._failed_grasps.append((grasp, True))
             raise SkillFailure(f"grasp of {self.source} did not hold (width {grasp.width_m:.3f} m)")
 
     def _choose_grasp(self, grasps: list[Grasp], geoms: dict[str, ObjectGeometry],
@@ -363,13 +237,22 @@ class TaskSkill:
         qpos = self._qpos()
         tallest = max((g.top_z for n, g in geoms.items() if n != self.source), default=src.top_z)
         arm_obstacles = _away_from_hand(obstacles, src.points.mean(axis=0))
-        options = [g for best in grasps[:GRASP_CANDIDATES] for g in (best, best.flipped())]
+        # Upright grasps first; leaning ones (away from a tall neighbour) when none works;
+        # then from the side; grasps on a taper (a bottle's neck) only when nothing else works.
+        firm = [g for g in grasps if not g.tapered]
+        upright = [g for g in firm if g.tilt_rad < 1e-3][:GRASP_CANDIDATES]
+        leaning = [g for g in firm if 1e-3 <= g.tilt_rad < np.pi / 4][:GRASP_CANDIDATES]
+        side = [g for g in firm if g.tilt_rad >= np.pi / 4][:GRASP_CANDIDATES]
+        tapered = [g for g in grasps if g.tapered][:GRASP_CANDIDATES]
+        options = [g for best in upright + leaning + side + tapered for g in (best, best.flipped())]
         for grasp in options:
             pose = grasp.pose()
+            # Along a leaning approach, the way back up to clear the tallest object is longer.
+            high = (max(tallest, src.top_z) + 0.06 - grasp.position[2]) / max(0.5, -grasp.approach[2])
             self.planner.set_obstacles(arm_obstacles)
             for at_grasp in self.planner.ik_solutions(qpos, pose, avoid=True)[:IK_SOLUTIONS]:
-                for height in (PRE_GRASP_HEIGHT_M, max(tallest, src.top_z) + 0.06 - grasp.position[2]):
-                    pre = sapien.Pose([0.0, 0.0, height]) * pose
+                for height in (PRE_GRASP_HEIGHT_M, high):
+                    pre = pose * sapien.Pose([0.0, 0.0, -height])  # back along the approach
                     above = self.planner.local_ik(at_grasp, pre)
                     if above is None:
                         continue
@@ -400,8 +283,9 @@ class TaskSkill:
     def _held(self, src: ObjectGeometry) -> HeldObject:
         tcp = self._tcp()
         opening = self._release_opening(src)
-        fingers = finger_points(closing_of(tcp), opening)
-        return HeldObject(src.points - np.asarray(tcp.p), fingers)
+        rotation = tcp.to_transformation_matrix()[:3, :3]
+        return HeldObject(src.points - np.asarray(tcp.p), finger_points(rotation, opening),
+                          palm_points(rotation))
 
     def _release_opening(self, src: ObjectGeometry) -> float:
         # Open a little wider than the object, not fully: the fingers stay clear of neighbours.
@@ -474,12 +358,6 @@ class TaskSkill:
         src_xy = src.points[:, :2].mean(axis=0)
         return place_near(held, src_xy, tgt.points, others, self.region)
 
-    def _attach(self, src: ObjectGeometry) -> None:
-        tcp = self._tcp()
-        local = (src.points - np.asarray(tcp.p)) @ tcp.to_transformation_matrix()[:3, :3]
-        lo, hi = local.min(axis=0), local.max(axis=0)
-        self.planner.attach_box(hi - lo, sapien.Pose((lo + hi) / 2))
-
     def _placed_wrong(self) -> str:
         """Why the object is not where the task wants it; empty if it looks right."""
         assert self.target is not None
@@ -503,6 +381,9 @@ class TaskSkill:
         assert self.target is not None
         centre = {n: g.footprint()[0] for n, g in geoms.items()}
         half_diag = {n: float(np.linalg.norm(g.footprint()[2])) for n, g in geoms.items()}
+        moved = float(np.linalg.norm(centre[self.source] - self._start_centre))
+        if moved < MOVED_M:
+            return f"{self.source} moved only {moved:.3f} m"
         d_target = float(np.linalg.norm(centre[self.source] - centre[self.target]))
         if d_target > half_diag[self.source] + half_diag[self.target] + NEAR_MARGIN_M:
             return f"{self.source} ended {d_target:.3f} m from {self.target}, not near it"
@@ -514,33 +395,20 @@ class TaskSkill:
         return ""
 
 
-@dataclass(frozen=True)
-class _GripperMap:
-    """Finger opening (m, between pads) <-> normalised gripper action of the mimic controller."""
+def plan_task(
+    env: Any,
+    task_type: str,
+    source: str,
+    target: str | None = None,
+    **options: Any,
+) -> TaskSkill:
+    """The skill that does ``task_type`` with objects ``source`` (and ``target``) in ``env``.
 
-    lower: float
-    upper: float
-
-    @classmethod
-    def of(cls, agent: Any) -> _GripperMap:
-        ctrl = agent.controller.controllers.get("gripper")
-        cfg = getattr(ctrl, "config", None)
-        lower = float(np.atleast_1d(getattr(cfg, "lower", -0.01))[0])
-        upper = float(np.atleast_1d(getattr(cfg, "upper", 0.04))[0])
-        return cls(lower, upper)
-
-    @property
-    def max_opening(self) -> float:
-        return 2 * self.upper
-
-    @property
-    def min_opening(self) -> float:
-        """Fully closed: the controller's lower limit squeezes below zero for grip force."""
-        return 2 * self.lower
-
-    def action(self, opening: float) -> float:
-        joint = float(np.clip(opening / 2, self.lower, self.upper))
-        return 2 * (joint - self.lower) / (self.upper - self.lower) - 1
+    ``env`` is the unwrapped scene env, made with ``control_mode="pd_joint_pos"``;
+    ``options`` go to :class:`TaskSkill` (``region``, ``max_attempts``). Iterate the
+    result for actions, stepping the env after each; read ``outcome`` at the end.
+    """
+    return TaskSkill(env, task_type, source, target, **options)
 
 
 def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
@@ -555,9 +423,14 @@ def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
     return points[~near]
 
 
-def _same_grasp(a: Grasp, b: Grasp) -> bool:
-    """Nearly the same grasp (position within 1 cm, closing within ~15 degrees, either sign)."""
-    return bool(np.linalg.norm(a.position - b.position) < 0.01 and abs(a.closing @ b.closing) > 0.96)
+def _same_grasp(a: Grasp, b: Grasp, slipped: bool) -> bool:
+    """Too like grasp ``b`` (which failed) to be worth trying: the same spot and direction;
+    after a slip also any grasp from above at the same height on the object (it has the
+    same shape there wherever it rolled to: a tapered neck that let go will let go again)."""
+    same_spot = np.linalg.norm(a.position - b.position) < 0.01 and abs(a.closing @ b.closing) > 0.96
+    from_above = a.tilt_rad < np.pi / 4 and b.tilt_rad < np.pi / 4
+    same_height = from_above and abs(a.position[2] - b.position[2]) < 0.015
+    return bool(same_spot or (slipped and same_height))
 
 
 def _yaw_quat(yaw: float) -> np.ndarray:
