@@ -9,8 +9,9 @@ the task predicates and the spawn height use.
 Meshes (when ``MS_ASSET_DIR`` holds them) load with the calls ManiSkill's own
 loaders make: convex collision hulls from ``collision.obj``/``collision.ply``
 (``add_multiple_convex_collisions_from_file``) and the visual from the first of
-``textured.obj``, ``textured.dae``, ``textured.glb`` (``add_visual_from_file``),
-with the densities of the pack's info json files.
+``textured.obj``, ``textured.dae``, ``textured.glb`` (``add_visual_from_file``).
+Their density gives the catalog's mass on the hulls PhysX cooks, so the catalog is
+the one source of masses for meshes and stand-ins alike.
 
 Stand-ins have the catalog's shape, size, colour and mass. A ``container`` is an
 open box (floor and four walls) so objects can be put *in* it.
@@ -19,7 +20,6 @@ open box (floor and four walls) so objects can be put *in* it.
 from __future__ import annotations
 
 import functools
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -171,19 +171,30 @@ def _first_existing(directory: Path, names: tuple[str, ...]) -> Path | None:
     return None
 
 
-@functools.lru_cache(maxsize=16)
-def _info_densities(info_dir: str) -> dict[str, float]:
-    """Model id -> density from every ``info_*.json`` in a model database folder."""
-    out: dict[str, float] = {}
-    for path in sorted(Path(info_dir).glob("info_*.json")):
-        with open(path, encoding="utf-8") as f:
-            for model, meta in json.load(f).items():
-                if "density" in meta:
-                    out.setdefault(model, float(meta["density"]))
-    return out
-
-
 @functools.lru_cache(maxsize=256)
+def cooked_hull_volume(collision_file: str) -> float:
+    """Volume in m^3 of the convex hulls PhysX cooks from ``collision_file``.
+
+    Measured as the mass of the hulls at density 1, on a scratch scene, so that it is
+    exactly what the simulator will integrate (one hull per connected component).
+    """
+    material = sapien.physx.PhysxMaterial(0.5, 0.5, 0.0)
+    shapes = sapien.physx.PhysxCollisionShapeConvexMesh.load_multiple(
+        filename=collision_file, scale=[1.0, 1.0, 1.0], material=material
+    )
+    body = sapien.physx.PhysxRigidDynamicComponent()
+    for shape in shapes:
+        shape.set_density(1.0)
+        body.attach(shape)
+    entity = sapien.Entity()
+    entity.add_component(body)
+    sapien.Scene().add_entity(entity)
+    volume = float(body.get_mass())
+    if volume <= 0.0:
+        raise ValueError(f"{collision_file}: PhysX cooked no volume from its hulls")
+    return volume
+
+
 def _mesh_box(collision_file: str, upright: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
     """(centre, half extents) of the collision mesh after the upright rotation."""
     mesh = trimesh.load(collision_file, force="mesh")
@@ -214,10 +225,9 @@ def add_mesh_shapes(
     collision, visual = files
     upright = tuple(float(a) for a in obj.mesh.upright_euler_deg)
     pose = sapien.Pose(q=euler2quat(*np.radians(upright)))
-    density = _info_densities(str(collision.parent.parent.parent)).get(obj.mesh.model)
-    if density is None:  # no info entry: match the catalog mass on the box volume
-        _, half = _mesh_box(str(collision), upright)
-        density = obj.mass_kg / float(np.prod(2 * half))
+    # The catalog is the one source of masses, for meshes as for stand-ins: the density
+    # that gives the catalog mass on the hulls PhysX actually cooks from this file.
+    density = obj.mass_kg / cooked_hull_volume(str(collision))
     builder.add_multiple_convex_collisions_from_file(
         filename=str(collision), pose=pose, material=_physx_material(), density=density
     )

@@ -2,7 +2,7 @@
 
 Objects are laid out on a grid (12 per scene, on ManiSkill's table beside the Panda),
 built, settled, and checked: built the expected way, resting upright on the table,
-with the catalog's mass (stand-ins).
+with the catalog's mass (stand-ins and meshes).
 """
 
 from __future__ import annotations
@@ -103,3 +103,5 @@ def test_every_listed_mesh_loads(panda_env: Any) -> None:
         u = panda_env.unwrapped
         assert set(u.object_sources.values()) == {"mesh"}, u.object_sources
         check_on_table(u)
+        for name, actor in u.objects.items():  # the catalog is the one source of masses
+            assert float(actor.mass[0]) == pytest.approx(catalog.get(name).mass_kg, rel=0.01), name
