@@ -6,6 +6,8 @@ from pathlib import Path
 
 import click
 
+from ladev_lib.cli._spec_file import read_spec_file
+
 
 def _parse_size(text: str | None) -> tuple[int, int] | None:
     if text is None:
@@ -40,20 +42,12 @@ def command(
     config_dir: str | None,
 ) -> None:
     """Render a scene spec (JSON) with its policy camera and an overview camera."""
-    from pydantic import ValidationError
-
-    from ladev_lib.catalog import load_catalog
     from ladev_lib.config import compose_config, section
     from ladev_lib.errors import ConfigError
-    from ladev_lib.scenes.spec import parse_scene_spec
     from ladev_lib.sim.config import SimConfig
     from ladev_lib.sim.render import render_spec, save_shots
 
-    try:
-        spec = parse_scene_spec(spec_path.read_text(encoding="utf-8"), catalog=load_catalog())
-    except ValidationError as exc:
-        lines = "\n".join(f"  {e['msg']}" for e in exc.errors())
-        raise click.ClickException(f"{spec_path} is not a valid scene spec:\n{lines}") from exc
+    spec = read_spec_file(spec_path)
     try:
         cfg = section(compose_config([], config_dir), "sim", SimConfig)
     except ConfigError as exc:

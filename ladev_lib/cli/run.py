@@ -18,6 +18,8 @@ from pathlib import Path
 
 import click
 
+from ladev_lib.cli._spec_file import read_spec_file
+
 
 @click.command()
 @click.argument("spec_path", type=click.Path(exists=True, dir_okay=False, path_type=Path))
@@ -44,23 +46,15 @@ def command(
     config_dir: str | None,
 ) -> None:
     """Roll out one policy on one scene spec and print the predicates."""
-    from pydantic import ValidationError
-
-    from ladev_lib.catalog import load_catalog
     from ladev_lib.config import compose_config, section
     from ladev_lib.errors import LadevError
     from ladev_lib.rollout.config import PolicyConfig
     from ladev_lib.rollout.jobs import EpisodeJob, MediaOptions, WorkerSpec
     from ladev_lib.rollout.plan import default_instruction
     from ladev_lib.rollout.worker import EpisodeWorker
-    from ladev_lib.scenes.spec import parse_scene_spec
     from ladev_lib.sim.config import RobotConfig, SimConfig
 
-    try:
-        spec = parse_scene_spec(spec_path.read_text(encoding="utf-8"), catalog=load_catalog())
-    except ValidationError as exc:
-        lines = "\n".join(f"  {e['msg']}" for e in exc.errors())
-        raise click.ClickException(f"{spec_path} is not a valid scene spec:\n{lines}") from exc
+    spec = read_spec_file(spec_path)
     text = instruction or default_instruction(spec)
     with tempfile.TemporaryDirectory(prefix="ladev-run-") as tmp:
         try:

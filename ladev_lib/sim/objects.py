@@ -223,7 +223,8 @@ def add_mesh_shapes(
     """Add the real mesh's hulls and visual; returns (box centre, half extents)."""
     assert obj.mesh is not None
     collision, visual = files
-    upright = tuple(float(a) for a in obj.mesh.upright_euler_deg)
+    ux, uy, uz = (float(a) for a in obj.mesh.upright_euler_deg)
+    upright = (ux, uy, uz)
     pose = sapien.Pose(q=euler2quat(*np.radians(upright)))
     # The catalog is the one source of masses, for meshes as for stand-ins: the density
     # that gives the catalog mass on the hulls PhysX actually cooks from this file.
