@@ -48,7 +48,7 @@ def command(
     """Roll out one policy on one scene spec and print the predicates."""
     from ladev_lib.config import compose_config, section
     from ladev_lib.errors import LadevError
-    from ladev_lib.rollout.config import PolicyConfig
+    from ladev_lib.policies.config import PolicyConfig
     from ladev_lib.rollout.jobs import EpisodeJob, MediaOptions, WorkerSpec
     from ladev_lib.rollout.plan import default_instruction
     from ladev_lib.rollout.worker import EpisodeWorker

@@ -1,7 +1,8 @@
 """Policies by configured name: a ``conf/policy/<name>.yaml`` entry or a registry name.
 
 ``conf/policy/rt1_x.yaml`` holds ``rt1_x: {name: rt1, checkpoint: ..., robot: ...}``:
-``name`` is the registry entry, the rest its keyword arguments. A name with no
+``name`` is the registry entry, the rest its keyword arguments (but ``robot_by_task``,
+which tells the rollout which robot each task runs on; see :class:`PolicyConfig`). A name with no
 file there is looked up in the registry directly (``random``, ``remote``).
 """
 
@@ -13,9 +14,10 @@ from typing import Any
 
 import yaml
 
-from ladev_lib.config import compose_config, find_config_dir
+from ladev_lib.config import compose_config, find_config_dir, section
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies import POLICIES, Policy, make_policy
+from ladev_lib.policies.config import PolicyConfig
 
 
 def parse_overrides(pairs: Iterable[str]) -> dict[str, Any]:
@@ -40,11 +42,8 @@ def policy_config(
         directory = None
     if directory is not None and (directory / "policy" / f"{name}.yaml").exists():
         cfg = compose_config([f"policy=[{name}]"], directory)
-        entry = dict(cfg.get("policy", {}).get(name) or {})
-        registry_name = entry.pop("name", None)
-        if not isinstance(registry_name, str):
-            raise ConfigError(f"{directory}/policy/{name}.yaml: '{name}.name' must name a registered policy")
-        kwargs = entry
+        entry = section(cfg.get("policy") or {}, name, PolicyConfig)
+        registry_name, kwargs = entry.name, entry.kwargs
     elif name in POLICIES:
         registry_name, kwargs = name, {}
     else:

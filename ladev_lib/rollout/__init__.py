@@ -8,9 +8,9 @@
 - :mod:`~ladev_lib.rollout.stage`: the ``rollout`` stage as a function.
 """
 
+from ladev_lib.policies.config import PolicyConfig
 from ladev_lib.rollout.config import (
     LocalExecutorConfig,
-    PolicyConfig,
     RayExecutorConfig,
     RolloutConfig,
     SerialExecutorConfig,

@@ -19,19 +19,6 @@ from ladev_lib.errors import ConfigError
 VideoMode = Literal["none", "failures", "all"]
 
 
-class PolicyConfig(BaseModel):
-    """One ``policy.<label>`` entry: the registry name and the factory's keyword arguments."""
-
-    model_config = ConfigDict(extra="allow", frozen=True)
-
-    name: str = Field(min_length=1, description="Registry name (ladev_lib.policies.POLICIES).")
-
-    @property
-    def kwargs(self) -> dict[str, Any]:
-        """Everything but ``name``: passed to the policy's factory."""
-        return dict(self.model_extra or {})
-
-
 class LocalExecutorConfig(BaseModel):
     """A pool of worker processes on this machine, each reusing its simulator."""
 

@@ -105,6 +105,8 @@ class WorkerSpec:
     """Module-level callable building the simulator; None: the LADEV ManiSkill env."""
     policy_factory: Callable[..., Policy] | None = None
     """Module-level callable building the policy; None: the registry entry ``policy_name``."""
+    robot_by_task: dict[str, str] = field(default_factory=dict)
+    """Task -> robot the policy drives for it (built once per robot); empty: one policy."""
 
     def resolved_sim_factory(self) -> Callable[[SimSetup], EpisodeSim]:
         return self.sim_factory or _default_sim_factory()

@@ -20,7 +20,8 @@ from ladev_lib.config import section
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies import POLICIES
 from ladev_lib.policies.base import Policy
-from ladev_lib.rollout.config import PolicyConfig, RolloutConfig, executor_config
+from ladev_lib.policies.config import PolicyConfig
+from ladev_lib.rollout.config import RolloutConfig, executor_config
 from ladev_lib.rollout.engine import RolloutSummary, run_rollout
 from ladev_lib.rollout.executors import make_executor
 from ladev_lib.rollout.identity import code_fingerprint
@@ -97,7 +98,7 @@ def rollout_stage(
 
     module = policy_factory.__module__ if policy_factory is not None else POLICIES.module_of(pc.name)
     code = code_fingerprint(module)
-    identity = PolicyIdentity(label=label, name=pc.name, config=pc.kwargs, code=code)
+    identity = PolicyIdentity(label=label, name=pc.name, config=pc.identity, code=code)
     plans = plan_episodes(
         compiled,
         instructions,
@@ -126,6 +127,7 @@ def rollout_stage(
         setup_timeout_s=rollout.setup_timeout_s,
         sim_factory=sim_factory,
         policy_factory=policy_factory,
+        robot_by_task={str(task): str(robot) for task, robot in pc.robot_by_task.items()},
     )
     store = ContentStore(_path(cfg, "episode_store_dir", root) / label)
     executor = make_executor(executor_cfg, rollout, policy_module=module, code_fingerprint=code)

@@ -68,29 +68,42 @@ class EpisodeWorker:
         self.spec = spec
         self.heartbeat: Heartbeat = heartbeat or NoHeartbeat()
         self.limits = Limits(spec.step_timeout_s, spec.setup_timeout_s)
-        self._policy: Policy | None = None
+        self._policies: dict[str | None, Policy] = {}
         self._sims: dict[tuple[str, str, tuple[int, int] | None], EpisodeSim] = {}
 
     @property
     def policy(self) -> Policy:
-        if self._policy is None:
+        """The policy as configured (its own default robot)."""
+        return self.policy_for(None)
+
+    def policy_for(self, robot: str | None) -> Policy:
+        """The policy built for ``robot`` (None: as configured); built once, then kept.
+
+        A policy whose config sets ``robot_by_task`` drives a different embodiment per task
+        (the paper: pick up and move near on the Google robot, put on and put in on WidowX);
+        it is built once per robot, with ``robot=<robot>`` added to its config.
+        """
+        if robot not in self._policies:
             self.heartbeat.enter("setup", 0, self.spec.setup_timeout_s)
             factory = self.spec.policy_factory
+            config = dict(self.spec.policy_config)
+            if robot is not None:
+                config["robot"] = robot
             try:
                 if factory is None:
                     from ladev_lib.policies import POLICIES
 
                     factory = POLICIES.get(self.spec.policy_name)
-                self._policy = factory(**self.spec.policy_config)
+                self._policies[robot] = factory(**config)
             except Exception as exc:
                 raise WorkerSetupError(
                     f"cannot build policy {self.spec.policy_name!r} with config "
-                    f"{self.spec.policy_config}: {type(exc).__name__}: {exc}"
+                    f"{config}: {type(exc).__name__}: {exc}"
                 ) from exc
-        return self._policy
+        return self._policies[robot]
 
-    def sim_for(self, robot: str) -> EpisodeSim:
-        info = self.policy.info
+    def sim_for(self, robot: str, policy: Policy | None = None) -> EpisodeSim:
+        info = (policy or self.policy).info
         # Every policy gets a policy camera, even one that reads no image: the validity
         # check's visibility test needs it (the same verdict for every policy), and so do
         # the episode's frames. It renders only when asked, a few times per episode.
@@ -115,17 +128,21 @@ class EpisodeWorker:
             sim = self._sims[key] = self.spec.resolved_sim_factory()(setup)
         return sim
 
-    def robot_for(self, job: EpisodeJob) -> str:
-        """The robot ``job`` runs with: the scene's, or the policy's first if it cannot drive it."""
+    def robot_for(self, job: EpisodeJob) -> tuple[str, Policy]:
+        """The robot ``job`` runs with, and the policy to drive it: the robot the policy's config
+        names for the task (``robot_by_task``), else the scene's robot, or the policy's first
+        robot if it cannot drive the scene's."""
         spec = SceneSpec.model_validate_json(job.spec_json)
-        return choose_robot(spec.robot, self.policy.info.robots)
+        by_task = self.spec.robot_by_task.get(spec.task.type)
+        if by_task is not None:
+            return by_task, self.policy_for(by_task)
+        return choose_robot(spec.robot, self.policy.info.robots), self.policy
 
     def run(self, job: EpisodeJob) -> EpisodeOutcome:
         """Run one episode. Raises :class:`WorkerSetupError` only for a configuration no episode can run with."""
-        policy = self.policy
-        robot = self.robot_for(job)
+        robot, policy = self.robot_for(job)
         try:
-            sim = self.sim_for(robot)
+            sim = self.sim_for(robot, policy)
         except ConfigError as exc:
             raise WorkerSetupError(f"cannot build the simulator for {robot}: {exc}") from exc
         except Exception as exc:  # noqa: BLE001 - a simulator that cannot be built fails this episode
@@ -156,6 +173,6 @@ class EpisodeWorker:
         for sim in self._sims.values():
             sim.close()
         self._sims.clear()
-        if self._policy is not None:
-            self._policy.close()
-            self._policy = None
+        for policy in self._policies.values():
+            policy.close()
+        self._policies.clear()

@@ -49,6 +49,8 @@ def test_paper_model_config(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
     for robot in ("google_robot", "widowx"):
         assert embodiment(robot, kwargs["embodiments"]) == EMBODIMENTS[robot]
     assert kwargs["robot"] == ("google_robot" if family == "rt1" else "widowx")
+    # robot_by_task is the rollout's (one robot per task), never a model argument
+    assert "robot_by_task" not in kwargs
 
 
 def test_checkpoint_root_defaults_to_checkpoints(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -15,8 +15,9 @@ from ladev_lib.language.config import ParaphraseConfig
 from ladev_lib.llm.config import LLMConfig
 from ladev_lib.llm.prompts import load_prompts
 from ladev_lib.pipeline import STAGE_ORDER
+from ladev_lib.policies.config import PolicyConfig
 from ladev_lib.report.config import ReportConfig
-from ladev_lib.rollout.config import PolicyConfig, RolloutConfig, executor_config
+from ladev_lib.rollout.config import RolloutConfig, executor_config
 from ladev_lib.scenes.compiler import CompileConfig
 from ladev_lib.scenes.spec import SceneBounds
 from ladev_lib.sim.config import RobotConfig, SimConfig

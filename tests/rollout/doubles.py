@@ -132,10 +132,12 @@ def _hang_in_c() -> None:
 class ScriptedToyPolicy(Policy):
     """Privileged: heads for the source object; misbehaves when the instruction says so."""
 
-    def __init__(self, image_size: tuple[int, int] | None = None, gain: float = 1.0) -> None:
+    def __init__(
+        self, image_size: tuple[int, int] | None = None, gain: float = 1.0, robot: str = "panda"
+    ) -> None:
         self.info = PolicyInfo(
             name="scripted-toy",
-            robots=("panda",),
+            robots=(robot,),
             control_mode="toy_delta_xy",
             image_size=tuple(image_size) if image_size else None,  # type: ignore[arg-type]
             privileged=True,

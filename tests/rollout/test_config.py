@@ -6,9 +6,9 @@ import pytest
 
 from ladev_lib.config import compose_config, section
 from ladev_lib.errors import ConfigError
+from ladev_lib.policies.config import PolicyConfig
 from ladev_lib.rollout.config import (
     LocalExecutorConfig,
-    PolicyConfig,
     RayExecutorConfig,
     RolloutConfig,
     SerialExecutorConfig,

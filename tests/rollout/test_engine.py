@@ -73,6 +73,19 @@ def test_a_changed_policy_config_reruns(toy_env):
     assert run_toy(toy_env, cfg).summary.ran == 1
 
 
+def test_robot_by_task_drives_each_task_with_its_robot(toy_env):
+    """The paper's protocol: one policy config, a robot per task, a policy built per robot."""
+    write_study(toy_env, [{"scene_id": "a"}, {"scene_id": "c", "task": "put_on", "num_objects": 2}])
+    cfg = toy_config()
+    cfg["policy"]["toy"]["robot_by_task"] = {"put_on": "widowx"}
+    run_toy(toy_env, cfg)
+    df = read_episodes(toy_env)
+    assert dict(zip(df["task"], df["robot"], strict=True)) == {"pick_up": "panda", "put_on": "widowx"}
+    assert set(df["status"]) == {"success"}
+    plain = toy_config()
+    assert run_toy(toy_env, plain).summary.ran == 2  # the robot choice is part of the episode id
+
+
 def test_local_pool_turns_every_failure_into_a_row(toy_env):
     write_study(toy_env, [
         *HEALTHY[:1], *DETERMINISTIC_FAILURES,

@@ -60,7 +60,7 @@ def _worker_main(spec: WorkerSpec, conn: mpc.Connection, beat: Any) -> None:
             if job is None:
                 break
             try:
-                conn.send(("start", job.episode_id, worker.robot_for(job)))
+                conn.send(("start", job.episode_id, worker.robot_for(job)[0]))
                 outcome = worker.run(job)
             except WorkerSetupError as exc:
                 conn.send(("fatal", job.episode_id, str(exc)))

@@ -74,7 +74,7 @@ class RayEpisodeActor:
 
     def run(self, job: EpisodeJob) -> dict[str, Any]:
         self.robot = None
-        self.robot = self.worker.robot_for(job)
+        self.robot, _ = self.worker.robot_for(job)
         return self.worker.run(job).model_dump()
 
     def progress(self) -> tuple[str, int, float, float, str | None]:
