@@ -4,13 +4,13 @@
 # with nothing changed takes a few seconds.
 #
 #   scripts/setup.sh            core install (+ dev tools)
-#   LADEV_EXTRAS=dev,ray scripts/setup.sh
+#   LADEV_EXTRAS=dev scripts/setup.sh          (default dev,ray)
 #   LADEV_VENV=/path/to/venv scripts/setup.sh
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
 VENV="${LADEV_VENV:-.venv}"
-EXTRAS="${LADEV_EXTRAS:-dev}"
+EXTRAS="${LADEV_EXTRAS:-dev,ray}"
 PYTHON="${LADEV_PYTHON:-python3}"
 # The CPU build of torch 2.13.0 is what the project is tested with. On a Linux
 # machine with an NVIDIA GPU, set TORCH_SPEC to the build you want.
