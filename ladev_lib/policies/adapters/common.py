@@ -7,8 +7,10 @@ The action every adapter returns is SimplerEnv's 7-vector for an end-effector
 delta-pose controller: ``[dx, dy, dz, rx, ry, rz, gripper]`` with the rotation
 as an axis-angle vector (axis * angle). The gripper entry depends on the robot:
 
-- Google robot: a *relative* command in [-1, 1] (1 = close, -1 = open), for
-  SimplerEnv's ``gripper_pd_joint_target_delta_pos_interpolate_by_planner``;
+- Google robot: a *relative* command in [-1, 1] (1 = close, -1 = open), for a
+  target-delta gripper (SimplerEnv's ``gripper_pd_joint_target_delta_pos_interpolate_by_planner``;
+  LADEV's Google robot has the same controller without the planner interpolation,
+  which has no ManiSkill 3 counterpart);
 - WidowX: an *absolute* target, binarised to +1 (open) or -1 (close), for
   ``gripper_pd_joint_pos``.
 """
@@ -27,10 +29,10 @@ import numpy as np
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import PolicyInfo
 
-GOOGLE_ROBOT_CONTROL_MODE = (
-    "arm_pd_ee_delta_pose_align_interpolate_by_planner"
-    "_gripper_pd_joint_target_delta_pos_interpolate_by_planner"
-)
+# The controllers of LADEV's robots (ladev_lib/sim/robots.py) that take SimplerEnv's
+# end-effector delta actions. Kept as strings here so this module needs no simulator;
+# tests/sim/test_vla_embodiments.py checks that the simulator offers them.
+GOOGLE_ROBOT_CONTROL_MODE = "arm_pd_ee_target_delta_pose_gripper_pd_joint_target_delta_pos"
 WIDOWX_CONTROL_MODE = "arm_pd_ee_target_delta_pose_align2_gripper_pd_joint_pos"
 
 ACTION_DIM = 7
