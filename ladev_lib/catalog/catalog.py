@@ -89,7 +89,7 @@ class CatalogObject(BaseModel):
     def footprint_radius_m(self) -> float:
         """Radius of the circle that covers the object's footprint on the table."""
         x, y, _ = self.size_m
-        return 0.5 * (x * x + y * y) ** 0.5
+        return float(0.5 * (x * x + y * y) ** 0.5)
 
     def mesh_dir(self, asset_dir: Path | None) -> Path | None:
         """The mesh directory when ``asset_dir`` holds this object's files, else None."""

@@ -17,7 +17,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
+from ladev_lib.arrays import Array
 
 if TYPE_CHECKING:
     from ladev_lib.scenes import SceneSpec
@@ -55,7 +55,7 @@ class PrivilegedState:
     """Ground truth handed to privileged policies only."""
 
     spec: SceneSpec
-    object_poses: dict[str, np.ndarray]
+    object_poses: dict[str, Array]
     """Instance name -> world pose [x, y, z, qw, qx, qy, qz]."""
     env: Any = None
     """The unwrapped ManiSkill env, for planners that need the robot model (the oracle)."""
@@ -65,9 +65,9 @@ class PrivilegedState:
 class Observation:
     """One step's input to a policy."""
 
-    image: np.ndarray | None
+    image: Array | None
     """(H, W, 3) uint8 RGB from the policy camera, or None if the policy wants no image."""
-    proprio: np.ndarray | None = None
+    proprio: Array | None = None
     """Robot state: joint positions followed by the TCP pose [x, y, z, qw, qx, qy, qz]."""
     privileged: PrivilegedState | None = None
     step: int = 0
@@ -82,9 +82,9 @@ class EpisodeContext:
     """The episode seed: a policy that samples must draw from it, so reruns match."""
     robot: str
     """The robot the episode runs with (one of ``PolicyInfo.robots``)."""
-    action_low: np.ndarray
+    action_low: Array
     """Lower bound of the action space of the declared control mode (may be -inf)."""
-    action_high: np.ndarray
+    action_high: Array
     """Upper bound of the action space (may be +inf)."""
 
 
@@ -92,7 +92,7 @@ class EpisodeContext:
 class PolicyStep:
     """One step's output: an action in the declared control mode, and a stop flag."""
 
-    action: np.ndarray
+    action: Array
     terminate: bool = False
 
 

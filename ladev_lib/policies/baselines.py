@@ -11,12 +11,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.base import EpisodeContext, Observation, Policy, PolicyInfo, PolicyStep
 
 DEFAULT_ROBOTS: tuple[str, ...] = ("panda", "widowx", "google_robot")
 
 
-def _finite_bounds(ctx: EpisodeContext | None, action_dim: int | None) -> tuple[np.ndarray, np.ndarray]:
+def _finite_bounds(ctx: EpisodeContext | None, action_dim: int | None) -> tuple[Array, Array]:
     if ctx is None:
         raise RuntimeError("begin_episode() must be called before step(): the policy needs the action bounds")
     low = np.asarray(ctx.action_low, dtype=np.float64)
@@ -73,7 +74,7 @@ class NoopPolicy(Policy):
         self.info = PolicyInfo(
             name="noop", robots=tuple(robots), control_mode=control_mode, image_size=None
         )
-        self._action: np.ndarray | None = None
+        self._action: Array | None = None
 
     def begin_episode(self, ctx: EpisodeContext) -> None:
         low, high = _finite_bounds(ctx, None)

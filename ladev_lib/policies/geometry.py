@@ -24,6 +24,8 @@ import sapien.physx as physx
 import trimesh
 import trimesh.creation
 
+from ladev_lib.arrays import Array
+
 SURFACE_SAMPLES = 3000
 """Points sampled per object, on top of the mesh vertices (1 cm spacing on a can)."""
 
@@ -35,6 +37,7 @@ _Z_TO_X = np.array(
 
 def _shape_mesh(shape: physx.PhysxCollisionShape) -> trimesh.Trimesh | None:
     """The shape as a mesh in its body's frame; None for planes."""
+    mesh: trimesh.Trimesh
     if isinstance(shape, physx.PhysxCollisionShapePlane):
         return None
     if isinstance(shape, physx.PhysxCollisionShapeBox):
@@ -77,15 +80,15 @@ def body_mesh(body: physx.PhysxRigidBaseComponent) -> trimesh.Trimesh:
     return merged
 
 
-def surface_points(mesh: trimesh.Trimesh, count: int = SURFACE_SAMPLES, seed: int = 0) -> np.ndarray:
+def surface_points(mesh: trimesh.Trimesh, count: int = SURFACE_SAMPLES, seed: int = 0) -> Array:
     """Vertices plus ``count`` area-weighted samples of the surface (deterministic)."""
     samples, _ = trimesh.sample.sample_surface(mesh, count, seed=seed)
     return np.vstack([np.asarray(mesh.vertices), np.asarray(samples)])
 
 
-def transform_points(pose: sapien.Pose, points: np.ndarray) -> np.ndarray:
+def transform_points(pose: sapien.Pose, points: Array) -> Array:
     m = pose.to_transformation_matrix()
-    return np.asarray(points) @ m[:3, :3].T + m[:3, 3]
+    return np.asarray(np.asarray(points) @ m[:3, :3].T + m[:3, 3])
 
 
 @dataclass(frozen=True)
@@ -93,7 +96,7 @@ class ObjectGeometry:
     """Surface points of one object, in the world frame at the time they were taken."""
 
     name: str
-    points: np.ndarray
+    points: Array
     """(N, 3) world-frame points on the collision surface."""
 
     @classmethod
@@ -111,10 +114,10 @@ class ObjectGeometry:
         return float(self.points[:, 2].max())
 
     @property
-    def xy(self) -> np.ndarray:
+    def xy(self) -> Array:
         return self.points[:, :2]
 
-    def footprint(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def footprint(self) -> tuple[Array, Array, Array]:
         """Minimum-area rectangle around the xy projection: (centre, axes, half extents).
 
         ``axes`` rows are unit vectors, the first along the long side.
@@ -122,7 +125,7 @@ class ObjectGeometry:
         return footprint_rectangle(self.xy)
 
 
-def footprint_rectangle(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def footprint_rectangle(xy: Array) -> tuple[Array, Array, Array]:
     """Minimum-area rectangle of 2-D points: (centre, axes (long first), half extents)."""
     transform, extents = trimesh.bounds.oriented_bounds_2D(np.asarray(xy, dtype=float))
     to_world = np.linalg.inv(transform)  # rectangle frame -> input frame

@@ -20,6 +20,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import sapien
 
+from ladev_lib.arrays import Array
+
 MAX_OPENING_M = 0.08
 """Distance between the Panda finger pads when fully open."""
 GRASP_CLEARANCE_M = 0.002
@@ -70,9 +72,9 @@ DOWN = np.array([0.0, 0.0, -1.0])
 class Grasp:
     """A grasp: TCP position, closing direction, approach direction and finger opening."""
 
-    position: np.ndarray
+    position: Array
     """(3,) world TCP position at the grasp."""
-    closing: np.ndarray
+    closing: Array
     """(3,) unit horizontal vector from one finger to the other."""
     width_m: float
     """Object width between the pads."""
@@ -80,7 +82,7 @@ class Grasp:
     """Distance between the pads to open to before descending."""
     score: float
     """Lower is better."""
-    approach: np.ndarray = field(default_factory=lambda: DOWN.copy())
+    approach: Array = field(default_factory=lambda: DOWN.copy())
     """(3,) unit direction the hand moves in to grasp: straight down, or leaning (``tilt``)."""
     taper_m: float = 0.0
     """How much narrower the object is at the pads' upper edge than at their lower edge.
@@ -106,7 +108,7 @@ class Grasp:
 
 
 
-def grasp_pose(position: np.ndarray, closing: np.ndarray, approach: np.ndarray = DOWN) -> sapien.Pose:
+def grasp_pose(position: Array, closing: Array, approach: Array = DOWN) -> sapien.Pose:
     """TCP pose whose z axis is ``approach`` and y axis ``closing`` (Panda convention)."""
     a = np.asarray(approach, dtype=float) / np.linalg.norm(approach)
     c = np.asarray(closing, dtype=float).copy()
@@ -119,26 +121,26 @@ def grasp_pose(position: np.ndarray, closing: np.ndarray, approach: np.ndarray =
     return sapien.Pose(matrix)
 
 
-def top_down_pose(position: np.ndarray, closing: np.ndarray) -> sapien.Pose:
+def top_down_pose(position: Array, closing: Array) -> sapien.Pose:
     """TCP pose approaching straight down, fingers closing along ``closing``."""
     return grasp_pose(position, closing, DOWN)
 
 
-def closing_of(pose: sapien.Pose) -> np.ndarray:
+def closing_of(pose: sapien.Pose) -> Array:
     """The closing direction (TCP y axis) of a TCP pose."""
     return np.asarray(pose.to_transformation_matrix()[:3, 1], dtype=float)
 
 
-def _wrist_turn(closing_xy: np.ndarray, current_xy: np.ndarray) -> float:
+def _wrist_turn(closing_xy: Array, current_xy: Array) -> float:
     """Rotation (rad) from the current closing direction to ``closing_xy``, either sign."""
     cos = float(np.clip(abs(closing_xy @ current_xy), -1.0, 1.0))
     return float(np.arccos(cos))
 
 
 def top_down_grasps(
-    points: np.ndarray,
-    obstacles: np.ndarray | None = None,
-    current_closing: np.ndarray | None = None,
+    points: Array,
+    obstacles: Array | None = None,
+    current_closing: Array | None = None,
     support_z: float | None = None,
     tilts_deg: tuple[float, ...] = TILTS_DEG,
 ) -> list[Grasp]:
@@ -213,36 +215,36 @@ def top_down_grasps(
     return grasps
 
 
-def _table_points(centre: np.ndarray, z: float) -> np.ndarray:
+def _table_points(centre: Array, z: float) -> Array:
     """A patch of the table around an object, as obstacle points for leaning hands."""
     ticks = np.arange(-TABLE_PATCH_M, TABLE_PATCH_M + 1e-9, 0.008)
     gx, gy = np.meshgrid(ticks, ticks)
     return np.stack([gx.ravel() + centre[0], gy.ravel() + centre[1], np.full(gx.size, z - 0.001)], axis=1)
 
 
-def _side_heights(points: np.ndarray, bottom: float) -> list[float]:
+def _side_heights(points: Array, bottom: float) -> list[float]:
     """Heights above the object's foot to hold it at from the side (middle part, palm clear)."""
     tall = float(points[:, 2].max()) - bottom
     lowest = PALM_HALF_WIDTH_M + NEIGHBOUR_CLEARANCE_M + 0.004  # the palm stays off the table
     return sorted({round(max(lowest, f * tall), 3) for f in (0.5, 0.35, 0.65)})
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+def _rotation(axis: Array, angle: float) -> Array:
     """Rotation matrix about a unit ``axis`` by ``angle`` (right hand)."""
     x, y, z = axis / np.linalg.norm(axis)
     k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
+    return np.asarray(np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k))
 
 
 def _evaluate(
-    xy: np.ndarray,
-    z: np.ndarray,
-    centre: np.ndarray,
-    c: np.ndarray,
-    o: np.ndarray,
+    xy: Array,
+    z: Array,
+    centre: Array,
+    c: Array,
+    o: Array,
     bottom: float,
     max_width: float,
-    obstacles: np.ndarray | None,
+    obstacles: Array | None,
 ) -> Grasp | None:
     """The grasp with fingers closing along ``c`` through ``centre``, or None if none fits."""
     rel = xy - centre
@@ -281,7 +283,7 @@ def _evaluate(
     return None
 
 
-def _taper(along_c: np.ndarray, z: np.ndarray, tcp_z: float) -> float:
+def _taper(along_c: Array, z: Array, tcp_z: float) -> float:
     """Width at the pads' lower edge minus width at their upper edge (z up, in the hand frame)."""
     lower, upper = z < tcp_z - 0.003, z > tcp_z + 0.003
     if not lower.any() or not upper.any():
@@ -289,7 +291,7 @@ def _taper(along_c: np.ndarray, z: np.ndarray, tcp_z: float) -> float:
     return float(np.ptp(along_c[lower]) - np.ptp(along_c[upper]))
 
 
-def _face_contact(along_c: np.ndarray, z: np.ndarray, extreme: float) -> bool:
+def _face_contact(along_c: Array, z: Array, extreme: float) -> bool:
     """True if the object's surface where a pad meets it (at ``extreme`` along the closing
     direction) runs along the pad for a few millimetres, rather than touching it at an
     edge: the points within 3 mm of the extreme span at least 4 mm of the pad's height."""
@@ -297,10 +299,10 @@ def _face_contact(along_c: np.ndarray, z: np.ndarray, extreme: float) -> bool:
     return bool(touching.any() and np.ptp(z[touching]) >= FACE_CONTACT_M)
 
 def _fingers_hit(
-    obstacles: np.ndarray,
-    grasp_xy: np.ndarray,
-    c: np.ndarray,
-    o: np.ndarray,
+    obstacles: Array,
+    grasp_xy: Array,
+    c: Array,
+    o: Array,
     tcp_z: float,
     opening: float,
 ) -> bool:

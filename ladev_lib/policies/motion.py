@@ -17,6 +17,7 @@ from typing import Any, Literal
 import numpy as np
 import sapien
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.geometry import ObjectGeometry
 from ladev_lib.policies.planner import BRISK_PATH_STEPS, ArmPath, ArmPlanner
 
@@ -93,15 +94,15 @@ class ArmMotion:
         self._arm_target = self._qpos()[: self.planner.n_arm]
         self._gripper_action = self._gripper.action(self._gripper.max_opening)
 
-    def hold_action(self) -> np.ndarray:
+    def hold_action(self) -> Array:
         """The action that keeps the arm and gripper where they were last sent."""
         return self._action()
 
     # -- state ---------------------------------------------------------------
-    def _qpos(self) -> np.ndarray:
+    def _qpos(self) -> Array:
         return np.asarray(self.agent.robot.get_qpos()[0].cpu().numpy(), dtype=float)
 
-    def _qvel(self) -> np.ndarray:
+    def _qvel(self) -> Array:
         return np.asarray(self.agent.robot.get_qvel()[0].cpu().numpy(), dtype=float)
 
     def _tcp(self) -> sapien.Pose:
@@ -114,10 +115,10 @@ class ArmMotion:
         self.outcome.log.append(f"[{self.outcome.phase}] {text}")
 
     # -- action streams ------------------------------------------------------
-    def _action(self) -> np.ndarray:
+    def _action(self) -> Array:
         return np.concatenate([self._arm_target, [self._gripper_action]]).astype(np.float32)
 
-    def _follow(self, path: ArmPath, precise: bool = False) -> Iterator[np.ndarray]:
+    def _follow(self, path: ArmPath, precise: bool = False) -> Iterator[Array]:
         """Send the path's joint targets, then wait for the arm to catch up.
 
         ``precise``: wait until the arm has (nearly) stopped at the end, as before
@@ -134,23 +135,23 @@ class ArmMotion:
                 break
             yield self._action()
 
-    def _gripper_steps(self, opening: float, steps: int) -> Iterator[np.ndarray]:
+    def _gripper_steps(self, opening: float, steps: int) -> Iterator[Array]:
         self._gripper_action = self._gripper.action(opening)
         for _ in range(steps):
             yield self._action()
 
-    def _wait(self, steps: int) -> Iterator[np.ndarray]:
+    def _wait(self, steps: int) -> Iterator[Array]:
         for _ in range(steps):
             yield self._action()
 
-    def _plan_from(self, qpos: np.ndarray, goal: sapien.Pose, *, avoid: bool, what: str) -> ArmPath:
+    def _plan_from(self, qpos: Array, goal: sapien.Pose, *, avoid: bool, what: str) -> ArmPath:
         path = self.planner.plan(qpos, goal, avoid)
         if path is None:
             raise SkillFailure(f"no collision-free path to {what} at {np.round(goal.p, 3).tolist()}")
         self._note(f"{what}: {path.method}, {len(path.qpos)} steps")
         return path
 
-    def _straight(self, goal: sapien.Pose, what: str, obstacles: np.ndarray,
+    def _straight(self, goal: sapien.Pose, what: str, obstacles: Array,
                   held: ObjectGeometry | None = None) -> ArmPath:
         """Straight to ``goal``; around the obstacles (with what is held) if straight is blocked."""
         path = self.planner.screw(self._qpos(), goal, avoid=False)
@@ -168,7 +169,7 @@ class ArmMotion:
         self._note(f"{what}: {path.method}, {len(path.qpos)} steps")
         return path
 
-    def _padded(self, arm_q: np.ndarray) -> np.ndarray:
+    def _padded(self, arm_q: Array) -> Array:
         q = self._qpos()
         q[: self.planner.n_arm] = arm_q
         return q
@@ -180,7 +181,7 @@ class ArmMotion:
         self.outcome.status = "done"
         self._phase("done")
 
-    def _retreat(self) -> Iterator[np.ndarray]:
+    def _retreat(self) -> Iterator[Array]:
         """Straight up, away from what was just grasped or let go."""
         self._phase("retreat")
         up = sapien.Pose([0.0, 0.0, RETREAT_HEIGHT_M]) * self._tcp()

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.base import Observation, Policy, PolicyInfo, PolicyStep
 from ladev_lib.policies.motion import SkillOutcome
 from ladev_lib.policies.skills import TaskSkill
@@ -47,7 +48,7 @@ class OraclePolicy(Policy):
         self.max_attempts = max_attempts
         self.bounds = bounds if isinstance(bounds, SceneBounds) else SceneBounds.model_validate(bounds or {})
         self._skill: TaskSkill | None = None
-        self._last_action: np.ndarray | None = None
+        self._last_action: Array | None = None
 
     def reset(self, instruction: str) -> None:
         self._skill = None

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial import ConvexHull, Delaunay, cKDTree
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.geometry import footprint_rectangle
 from ladev_lib.policies.grasping import (
     FINGER_HALF_WIDTH_M,
@@ -52,11 +53,11 @@ DESCENT_STEP_M = 0.004
 class HeldObject:
     """What the gripper carries, relative to the TCP position (world axes)."""
 
-    object_points: np.ndarray
+    object_points: Array
     """(N, 3) the held object's surface, minus the TCP position."""
-    finger_points: np.ndarray
+    finger_points: Array
     """(M, 3) the open fingers at release, minus the TCP position."""
-    palm_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    palm_points: Array = field(default_factory=lambda: np.zeros((0, 3)))
     """(K, 3) the hand's palm, minus the TCP position (checked on the way down only)."""
 
     def turned(self, yaw: float) -> HeldObject:
@@ -66,7 +67,7 @@ class HeldObject:
         return HeldObject(self.object_points @ rot.T, self.finger_points @ rot.T, self.palm_points @ rot.T)
 
     @property
-    def all_points(self) -> np.ndarray:
+    def all_points(self) -> Array:
         return np.vstack([self.object_points, self.finger_points, self.palm_points])
 
     @property
@@ -79,13 +80,13 @@ class HeldObject:
 class Placement:
     """A release: TCP position and the wrist turn to apply while carrying."""
 
-    tcp_xy: np.ndarray
+    tcp_xy: Array
     yaw: float
     tcp_z: float | None = None
     """Set when the release height is decided by the geometry (on / in)."""
 
 
-def finger_points(tcp_rotation: np.ndarray, opening_m: float) -> np.ndarray:
+def finger_points(tcp_rotation: Array, opening_m: float) -> Array:
     """Points filling both open fingers (pad and knuckle), relative to the TCP (world axes).
 
     ``tcp_rotation`` is the TCP's 3x3 orientation: its y axis is the closing direction
@@ -107,20 +108,20 @@ def finger_points(tcp_rotation: np.ndarray, opening_m: float) -> np.ndarray:
     return np.vstack(parts)
 
 
-def palm_points(tcp_rotation: np.ndarray) -> np.ndarray:
+def palm_points(tcp_rotation: Array) -> Array:
     """Points on the underside and sides of the palm, relative to the TCP (world axes)."""
     across = np.linspace(-PALM_HALF_LENGTH_M, PALM_HALF_LENGTH_M, 9)
     sideways = np.linspace(-PALM_HALF_WIDTH_M, PALM_HALF_WIDTH_M, 3)
     above = np.linspace(PALM_ABOVE_TCP_M, PALM_ABOVE_TCP_M + 0.06, 3)
     grid = np.array(np.meshgrid(sideways, across, above, indexing="ij")).reshape(3, -1).T
     local = np.stack([grid[:, 0], grid[:, 1], -grid[:, 2]], axis=1)  # TCP z points to the fingertips
-    return local @ np.asarray(tcp_rotation, dtype=float).T
+    return np.asarray(local @ np.asarray(tcp_rotation, dtype=float).T)
 
 
 def lowest_free_height(
     held: HeldObject,
-    tcp_xy: np.ndarray,
-    obstacles: np.ndarray,
+    tcp_xy: Array,
+    obstacles: Array,
     z_high: float,
     z_low: float,
     clearance: float = DESCENT_CLEARANCE_M,
@@ -145,14 +146,14 @@ def lowest_free_height(
     return best
 
 
-def _inside_fraction(xy: np.ndarray, rect: tuple[np.ndarray, np.ndarray, np.ndarray]) -> float:
+def _inside_fraction(xy: Array, rect: tuple[Array, Array, Array]) -> float:
     centre, axes, half = rect
     rel = (xy - centre) @ axes.T
     return float(np.mean(np.all(np.abs(rel) <= half, axis=1)))
 
 
-def _yaws_by_fit(held: HeldObject, centre: np.ndarray,
-                 rect: tuple[np.ndarray, np.ndarray, np.ndarray]) -> list[float]:
+def _yaws_by_fit(held: HeldObject, centre: Array,
+                 rect: tuple[Array, Array, Array]) -> list[float]:
     """Wrist turns (15 degree steps, up to a quarter turn), best fit over ``rect`` first.
 
     The fit is the share of the held object over the rectangle; smaller turns win ties.
@@ -165,13 +166,13 @@ def _yaws_by_fit(held: HeldObject, centre: np.ndarray,
     return sorted(options, key=fit, reverse=True)[:FITTED_YAWS]
 
 
-def _tcp_for_object_at(held: HeldObject, object_xy: np.ndarray) -> np.ndarray:
+def _tcp_for_object_at(held: HeldObject, object_xy: Array) -> Array:
     """TCP xy that puts the held object's footprint centre at ``object_xy``."""
-    return object_xy - held.object_points[:, :2].mean(axis=0)
+    return np.asarray(object_xy - held.object_points[:, :2].mean(axis=0))
 
 
-def _lowered(held: HeldObject, centre: np.ndarray, rect: tuple[np.ndarray, np.ndarray, np.ndarray],
-             obstacles: np.ndarray, z_high: float, floor_z: float) -> list[Placement]:
+def _lowered(held: HeldObject, centre: Array, rect: tuple[Array, Array, Array],
+             obstacles: Array, z_high: float, floor_z: float) -> list[Placement]:
     out = []
     for yaw in _yaws_by_fit(held, centre, rect):
         turned = held.turned(yaw)
@@ -182,7 +183,7 @@ def _lowered(held: HeldObject, centre: np.ndarray, rect: tuple[np.ndarray, np.nd
     return out
 
 
-def place_on(held: HeldObject, target: np.ndarray, others: np.ndarray, z_high: float) -> list[Placement]:
+def place_on(held: HeldObject, target: Array, others: Array, z_high: float) -> list[Placement]:
     """Releases over the middle of the target's top surface, just above it, best first."""
     top = target[target[:, 2] >= target[:, 2].max() - 0.01]
     rect = footprint_rectangle(top[:, :2])
@@ -190,7 +191,7 @@ def place_on(held: HeldObject, target: np.ndarray, others: np.ndarray, z_high: f
     return _lowered(held, rect[0], rect, obstacles, z_high, float(target[:, 2].max()))
 
 
-def place_in(held: HeldObject, container: np.ndarray, others: np.ndarray, z_high: float) -> list[Placement]:
+def place_in(held: HeldObject, container: Array, others: Array, z_high: float) -> list[Placement]:
     """Releases over the middle of the container's rim, as deep as each fits, best first."""
     rim = container[container[:, 2] >= container[:, 2].max() - 0.012]
     centre, axes, half = footprint_rectangle(rim[:, :2])
@@ -203,7 +204,7 @@ def place_in(held: HeldObject, container: np.ndarray, others: np.ndarray, z_high
 class _Outline:
     """A convex 2-D footprint: its boundary at 5 mm spacing, for fast clearance checks."""
 
-    def __init__(self, xy: np.ndarray, spacing: float = 0.005):
+    def __init__(self, xy: Array, spacing: float = 0.005):
         hull = ConvexHull(xy)
         corners = xy[hull.vertices]
         pts = []
@@ -215,10 +216,10 @@ class _Outline:
         self._tri = Delaunay(corners)
         self._tree = cKDTree(self.boundary)
 
-    def contains_any(self, pts: np.ndarray) -> bool:
+    def contains_any(self, pts: Array) -> bool:
         return bool((self._tri.find_simplex(pts) >= 0).any())
 
-    def clearance(self, other: _Outline, offset: np.ndarray) -> float:
+    def clearance(self, other: _Outline, offset: Array) -> float:
         """Distance between this outline and ``other`` moved by ``offset``; 0 if they overlap."""
         moved = other.boundary + offset
         if self.contains_any(moved) or other.contains_any(self.boundary - offset):
@@ -229,9 +230,9 @@ class _Outline:
 
 def place_near(
     held: HeldObject,
-    source_xy: np.ndarray,
-    target: np.ndarray,
-    others: dict[str, np.ndarray],
+    source_xy: Array,
+    target: Array,
+    others: dict[str, Array],
     region: tuple[tuple[float, float], tuple[float, float]],
 ) -> list[Placement]:
     """Release spots next to the target that keep the gaps and the ordering, closest first.
@@ -270,7 +271,7 @@ def place_near(
     return [p for _, p in found]
 
 
-def _first_clear_spot(target: _Outline, direction: np.ndarray, hand: _Outline) -> np.ndarray | None:
+def _first_clear_spot(target: _Outline, direction: Array, hand: _Outline) -> Array | None:
     """Nearest hand centre along ``direction`` from the target where the hand clears it."""
     def clear(d: float) -> bool:
         return target.clearance(hand, target.centre + d * direction) >= TARGET_GAP_M
@@ -282,4 +283,4 @@ def _first_clear_spot(target: _Outline, direction: np.ndarray, hand: _Outline) -
     while hi - lo > 0.002:  # the clear spot nearest the target, to 2 mm
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if clear(mid) else (mid, hi)
-    return target.centre + hi * direction
+    return np.asarray(target.centre + hi * direction)

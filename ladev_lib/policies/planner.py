@@ -25,6 +25,7 @@ import mplib
 import numpy as np
 import sapien
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.geometry import transform_points
 
 OCTREE_RESOLUTION_M = 0.006
@@ -65,13 +66,13 @@ def _quiet_native_output() -> Iterator[None]:
 class ArmPath:
     """Arm joint positions to send one per control step, and how it was found."""
 
-    qpos: np.ndarray
+    qpos: Array
     """(T, n_arm_joints)"""
     method: str
     """"screw" or "rrt"."""
 
 
-def _pose7(pose: sapien.Pose) -> np.ndarray:
+def _pose7(pose: sapien.Pose) -> Array:
     return np.concatenate([np.asarray(pose.p, dtype=float), np.asarray(pose.q, dtype=float)])
 
 
@@ -84,7 +85,7 @@ class ArmPlanner:
         link_names = [link.get_name() for link in robot.get_links()]
         joint_names = [joint.get_name() for joint in robot.get_active_joints()]
         with contextlib.redirect_stdout(io.StringIO()):  # mplib prints SRDF notices
-            self._mp = mplib.Planner(
+            self._mp = mplib.planner.Planner(
                 urdf=agent.urdf_path,
                 srdf=agent.urdf_path.replace(".urdf", ".srdf"),
                 user_link_names=link_names,
@@ -101,7 +102,7 @@ class ArmPlanner:
         self._has_attached = False
 
     # -- scene ---------------------------------------------------------------
-    def set_obstacles(self, points_world: np.ndarray | None) -> None:
+    def set_obstacles(self, points_world: Array | None) -> None:
         """Replace the obstacle points (world frame); None or empty clears them."""
         if points_world is None or len(points_world) == 0:
             self._has_obstacles = False
@@ -110,7 +111,7 @@ class ArmPlanner:
         self._mp.update_point_cloud(pts, OCTREE_RESOLUTION_M)
         self._has_obstacles = True
 
-    def attach_box(self, size: np.ndarray, pose_in_tcp: sapien.Pose) -> None:
+    def attach_box(self, size: Array, pose_in_tcp: sapien.Pose) -> None:
         """Treat a box held in the gripper as part of the robot when planning."""
         self._mp.update_attached_box(np.asarray(size, dtype=float), _pose7(pose_in_tcp))
         self._has_attached = True
@@ -119,7 +120,7 @@ class ArmPlanner:
         self._has_attached = False
 
     # -- queries -------------------------------------------------------------
-    def _to_base(self, pose_world: sapien.Pose) -> np.ndarray:
+    def _to_base(self, pose_world: sapien.Pose) -> Array:
         return _pose7(self._base_inv * pose_world)
 
     def _flags(self, avoid: bool) -> dict[str, bool]:
@@ -128,7 +129,7 @@ class ArmPlanner:
             "use_attach": avoid and self._has_attached,
         }
 
-    def screw(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
+    def screw(self, qpos: Array, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
         """A straight screw motion of the TCP to ``goal`` (world), or None if it collides."""
         result = self._mp.plan_screw(
             self._to_base(goal),
@@ -150,7 +151,7 @@ class ArmPlanner:
             path = np.vstack([path, fixed])
         return ArmPath(path, "screw")
 
-    def _refine_end(self, qpos: np.ndarray, arm_q: np.ndarray, goal: sapien.Pose) -> np.ndarray | None:
+    def _refine_end(self, qpos: Array, arm_q: Array, goal: sapien.Pose) -> Array | None:
         """Waypoints from ``arm_q`` to the exact IK solution of ``goal`` next to it, or None."""
         seed = self._mp.pad_qpos(np.asarray(qpos, dtype=float).copy())
         seed[: self.n_arm] = arm_q
@@ -165,14 +166,14 @@ class ArmPlanner:
         n = max(1, int(np.ceil(gap / REFINE_STEP_RAD)))
         return np.asarray(arm_q + np.outer(np.arange(1, n + 1) / n, q - arm_q))
 
-    def tcp_pose(self, qpos: np.ndarray) -> sapien.Pose:
+    def tcp_pose(self, qpos: Array) -> sapien.Pose:
         """Forward kinematics: the TCP pose (world) at this joint configuration."""
         model = self._mp.pinocchio_model
         model.compute_forward_kinematics(self._mp.pad_qpos(np.asarray(qpos, dtype=float).copy()))
         p = model.get_link_pose(self._mp.link_name_2_idx[self._mp.move_group])
         return self._base * sapien.Pose(p[:3], p[3:])
 
-    def _ends_at(self, qpos: np.ndarray, arm_q: np.ndarray, goal: sapien.Pose) -> bool:
+    def _ends_at(self, qpos: Array, arm_q: Array, goal: sapien.Pose) -> bool:
         full = np.asarray(qpos, dtype=float).copy()
         full[: self.n_arm] = arm_q
         end = self.tcp_pose(full)
@@ -181,7 +182,7 @@ class ArmPlanner:
         rot_err = 2 * float(np.arccos(min(1.0, dot)))
         return pos_err <= END_POS_TOL_M and rot_err <= END_ROT_TOL_RAD
 
-    def rrt(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
+    def rrt(self, qpos: Array, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
         """A collision-free RRT-Connect path to ``goal`` (world), or None."""
         with _quiet_native_output():
             result = self._mp.plan_qpos_to_pose(
@@ -196,7 +197,7 @@ class ArmPlanner:
             return None
         return ArmPath(np.asarray(result["position"]), "rrt")
 
-    def plan(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
+    def plan(self, qpos: Array, goal: sapien.Pose, avoid: bool = True) -> ArmPath | None:
         """Screw motion if it is free and brisk, else the quicker of it and an RRT path.
 
         A screw motion that passes near a singularity (the arm stretched out) is slowed
@@ -214,17 +215,17 @@ class ArmPlanner:
         self._mp.planning_world.set_use_point_cloud(flags["use_point_cloud"])
         self._mp.planning_world.set_use_attach(flags["use_attach"])
 
-    def reachable(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> bool:
+    def reachable(self, qpos: Array, goal: sapien.Pose, avoid: bool = True) -> bool:
         """True if some joint configuration reaches ``goal`` without collision."""
         return bool(self.ik_solutions(qpos, goal, avoid))
 
-    def ik_solutions(self, qpos: np.ndarray, goal: sapien.Pose, avoid: bool = True) -> list[np.ndarray]:
+    def ik_solutions(self, qpos: Array, goal: sapien.Pose, avoid: bool = True) -> list[Array]:
         """Distinct collision-free joint configurations (full qpos) that put the TCP at ``goal``."""
         self._use(avoid)
         status, solutions = self._mp.IK(self._to_base(goal), np.asarray(qpos, dtype=float).copy())
         return [np.asarray(q, dtype=float) for q in solutions] if status == "Success" else []
 
-    def local_ik(self, seed: np.ndarray, goal: sapien.Pose) -> np.ndarray | None:
+    def local_ik(self, seed: Array, goal: sapien.Pose) -> Array | None:
         """The configuration reaching ``goal`` nearest ``seed`` (full qpos), within joint limits."""
         full = self._mp.pad_qpos(np.asarray(seed, dtype=float).copy())
         index = self._mp.link_name_2_idx[self._mp.move_group]
@@ -234,14 +235,14 @@ class ArmPlanner:
             return None
         return q
 
-    def collides(self, qpos: np.ndarray, avoid: bool = True) -> bool:
+    def collides(self, qpos: Array, avoid: bool = True) -> bool:
         """True if the robot at ``qpos`` touches itself or (``avoid``) the obstacles."""
         self._use(avoid)
         full = self._mp.pad_qpos(np.asarray(qpos, dtype=float).copy())
         self._mp.planning_world.set_qpos_all(full[self._mp.move_group_joint_indices])
         return bool(self._mp.planning_world.collide())
 
-    def to_qpos(self, qpos: np.ndarray, goal_q: np.ndarray, avoid: bool = True) -> ArmPath | None:
+    def to_qpos(self, qpos: Array, goal_q: Array, avoid: bool = True) -> ArmPath | None:
         """A path in joint space to ``goal_q``: straight if free, else RRT-Connect."""
         start = np.asarray(qpos, dtype=float)[: self.n_arm]
         end = np.asarray(goal_q, dtype=float)[: self.n_arm]

@@ -33,6 +33,7 @@ from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidSta
 from websockets.protocol import State
 from websockets.sync.client import ClientConnection, connect
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError, LadevError
 from ladev_lib.policies.base import Observation, Policy, PolicyInfo, PolicyStep
 from ladev_lib.serving.codec import PayloadError, packb, str_keys, unpackb
@@ -89,7 +90,7 @@ class RemotePolicy(Policy):
         self.config = RemotePolicyConfig.model_validate(config)
         self._api_key = self._resolve_api_key()
         self._ws: ClientConnection | None = None
-        self._chunk: deque[np.ndarray] = deque()
+        self._chunk: deque[Array] = deque()
         self._instruction: str | None = None
         self._new_episode = False
         self.server_metadata: dict[str, Any] = {}
@@ -281,7 +282,7 @@ class RemotePolicy(Policy):
             set_path(message, keys.reset, True)
         return message
 
-    def _prepare_image(self, image: np.ndarray) -> np.ndarray:
+    def _prepare_image(self, image: Array) -> Array:
         if self.config.resize_to is None:
             return np.ascontiguousarray(image, dtype=np.uint8)
         return resize_with_pad(image, *self.config.resize_to)
@@ -315,7 +316,7 @@ class RemotePolicy(Policy):
             self._ws = None
 
 
-def resize_with_pad(image: np.ndarray, width: int, height: int) -> np.ndarray:
+def resize_with_pad(image: Array, width: int, height: int) -> Array:
     """Resize keeping the aspect ratio, pad with black to (height, width) (openpi's client does)."""
     from PIL import Image
 

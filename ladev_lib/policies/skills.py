@@ -26,6 +26,7 @@ from typing import Any, Literal
 import numpy as np
 import sapien
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.geometry import ObjectGeometry
 from ladev_lib.policies.grasping import OPENING_MARGIN_M, Grasp, closing_of, top_down_grasps
 from ladev_lib.policies.motion import ArmMotion, SkillFailure
@@ -110,10 +111,10 @@ class TaskSkill(ArmMotion):
         self._actions = self._run()
 
     # -- iteration -----------------------------------------------------------
-    def __iter__(self) -> Iterator[np.ndarray]:
+    def __iter__(self) -> Iterator[Array]:
         return self
 
-    def __next__(self) -> np.ndarray:
+    def __next__(self) -> Array:
         action = next(self._actions)
         self._emitted += 1
         steps = self.outcome.phase_steps
@@ -124,7 +125,7 @@ class TaskSkill(ArmMotion):
         return bool(self.agent.is_grasping(self.env.objects[self.source])[0])
 
     # -- the task ------------------------------------------------------------
-    def _run(self) -> Iterator[np.ndarray]:
+    def _run(self) -> Iterator[Array]:
         reason = ""
         for attempt in range(1, self.max_attempts + 1):
             self.outcome.attempts = attempt
@@ -160,7 +161,7 @@ class TaskSkill(ArmMotion):
         self.outcome.reason = reason or "gave up"
         return None
 
-    def _set_down(self) -> Iterator[np.ndarray]:
+    def _set_down(self) -> Iterator[Array]:
         """Put the held object back down below the hand (after a failed attempt), let go."""
         self._phase("set_down")
         geoms = self._geometries()
@@ -181,7 +182,7 @@ class TaskSkill(ArmMotion):
         yield from self._retreat()
 
     # -- pick ----------------------------------------------------------------
-    def _pick(self) -> Iterator[np.ndarray]:
+    def _pick(self) -> Iterator[Array]:
         self._phase("approach")
         geoms = self._geometries()
         src = geoms[self.source]
@@ -222,7 +223,7 @@ class TaskSkill(ArmMotion):
             raise SkillFailure(f"grasp of {self.source} did not hold (width {grasp.width_m:.3f} m)")
 
     def _choose_grasp(self, grasps: list[Grasp], geoms: dict[str, ObjectGeometry],
-                      obstacles: np.ndarray) -> tuple[Grasp, ArmPath, ArmPath] | None:
+                      obstacles: Array) -> tuple[Grasp, ArmPath, ArmPath] | None:
         """The first grasp (best first, either hand orientation) with a free way there and down.
 
         Works back from the grasp: an arm configuration at the grasp that touches no other
@@ -294,7 +295,7 @@ class TaskSkill(ArmMotion):
         width = float(across.max() - across.min())
         return min(self._gripper.max_opening, width + OPENING_MARGIN_M)
 
-    def _place(self) -> Iterator[np.ndarray]:
+    def _place(self) -> Iterator[Array]:
         assert self.target is not None
         self._phase("carry")
         geoms = self._geometries()
@@ -349,7 +350,7 @@ class TaskSkill(ArmMotion):
         yield from self._wait(SETTLE_STEPS)
 
     def _placements(self, held: HeldObject, src: ObjectGeometry, tgt: ObjectGeometry,
-                    others: dict[str, np.ndarray], other_pts: np.ndarray,
+                    others: dict[str, Array], other_pts: Array,
                     carry_z: float) -> list[Placement]:
         if self.task_type == "put_on":
             return place_on(held, tgt.points, other_pts, carry_z)
@@ -411,7 +412,7 @@ def plan_task(
     return TaskSkill(env, task_type, source, target, **options)
 
 
-def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
+def _away_from_hand(points: Array, tcp: Array) -> Array:
     """Obstacle points the arm must avoid beyond the hand's own reach around a grasp.
 
     Around the grasp the hand's clearance was checked on the points themselves (to
@@ -420,7 +421,7 @@ def _away_from_hand(points: np.ndarray, tcp: np.ndarray) -> np.ndarray:
     near = (np.linalg.norm(points[:, :2] - tcp[:2], axis=1) < HAND_RADIUS_M) & (
         points[:, 2] < tcp[2] + PRE_GRASP_HEIGHT_M + 0.05
     )
-    return points[~near]
+    return np.asarray(points[~near])
 
 
 def _same_grasp(a: Grasp, b: Grasp, slipped: bool) -> bool:
@@ -433,7 +434,7 @@ def _same_grasp(a: Grasp, b: Grasp, slipped: bool) -> bool:
     return bool(same_spot or (slipped and same_height))
 
 
-def _yaw_quat(yaw: float) -> np.ndarray:
+def _yaw_quat(yaw: float) -> Array:
     return np.array([np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)])
 
 

@@ -20,6 +20,7 @@ from typing import Any
 import msgpack
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import LadevError
 
 # Explicit byte order (or none for 1-byte types) + kind in {b, i, u, f} + size.
@@ -33,7 +34,7 @@ class PayloadError(LadevError, ValueError):
     """A message that is not a well-formed, plain-numeric msgpack-numpy payload."""
 
 
-def _plain_dtype(obj: np.ndarray | np.generic) -> np.dtype[Any]:
+def _plain_dtype(obj: Array | np.generic) -> np.dtype[Any]:
     dtype = obj.dtype
     if dtype.kind not in "biuf":
         raise PayloadError(f"cannot send numpy dtype {dtype!s}: only bool, int, uint, float")
@@ -68,7 +69,7 @@ def _checked_dtype(raw: Any) -> np.dtype[Any]:
     return np.dtype(text)
 
 
-def _decode_array(obj: dict[Any, Any]) -> np.ndarray:
+def _decode_array(obj: dict[Any, Any]) -> Array:
     dtype = _checked_dtype(obj.get(b"dtype"))
     shape = obj.get(b"shape")
     data = obj.get(b"data")

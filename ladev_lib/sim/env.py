@@ -36,6 +36,7 @@ from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig as ManiSkillSimConfig
 from transforms3d.euler import euler2quat
 
+from ladev_lib.arrays import Array
 from ladev_lib.assets import asset_dir
 from ladev_lib.catalog import load_catalog
 from ladev_lib.errors import ConfigError
@@ -63,8 +64,8 @@ class SpawnReport:
 
     penetrations: list[tuple[str, str, float]] = field(default_factory=list)
     """(body, body, depth in m) for pairs of objects or object and robot that overlap at spawn."""
-    spawn_poses: dict[str, np.ndarray] = field(default_factory=dict)
-    settled_poses: dict[str, np.ndarray] = field(default_factory=dict)
+    spawn_poses: dict[str, Array] = field(default_factory=dict)
+    settled_poses: dict[str, Array] = field(default_factory=dict)
     settled_speeds: dict[str, tuple[float, float]] = field(default_factory=dict)
     """name -> (linear m/s, angular rad/s) after settling."""
     settle_steps: int = 0
@@ -351,7 +352,7 @@ class LadevSceneEnv(BaseEnv):
             self.scene._gpu_fetch_all()
 
     def _settle(self, seconds: float) -> int:
-        n = round(seconds * self.sim_freq)
+        n = int(round(seconds * self.sim_freq))
         self._physics_step(n)
         return n
 
@@ -381,8 +382,8 @@ class LadevSceneEnv(BaseEnv):
 
     # -- state queries (used by tasks, validity, planners) ---------------------------------
     @staticmethod
-    def _pose_np(actor: Any) -> np.ndarray:
-        out: np.ndarray = actor.pose.raw_pose[0].detach().cpu().numpy().astype(float)
+    def _pose_np(actor: Any) -> Array:
+        out: Array = actor.pose.raw_pose[0].detach().cpu().numpy().astype(float)
         return out
 
     def _speed(self, name: str) -> tuple[float, float]:
@@ -392,26 +393,26 @@ class LadevSceneEnv(BaseEnv):
             float(torch.linalg.norm(a.angular_velocity[0])),
         )
 
-    def object_poses(self) -> dict[str, np.ndarray]:
+    def object_poses(self) -> dict[str, Array]:
         """Instance name -> world pose [x, y, z, qw, qx, qy, qz] of each object's actor."""
         return {n: self._pose_np(a) for n, a in self.objects.items()}
 
-    def workspace_to_world(self, x: float, y: float, z: float = 0.0) -> np.ndarray:
+    def workspace_to_world(self, x: float, y: float, z: float = 0.0) -> Array:
         """A workspace-frame point (on the table top when z = 0) in world coordinates."""
         return self.profile.workspace_to_world(x, y, z)
 
-    def world_to_workspace(self, p: np.ndarray) -> np.ndarray:
+    def world_to_workspace(self, p: Array) -> Array:
         return self.profile.world_to_workspace(p)
 
-    def _box_center(self, pose: np.ndarray, name: str) -> np.ndarray:
-        out: np.ndarray = pose[:3] + quat_to_matrix(pose[3:]) @ self.built[name].box_center
+    def _box_center(self, pose: Array, name: str) -> Array:
+        out: Array = pose[:3] + quat_to_matrix(pose[3:]) @ self.built[name].box_center
         return out
 
-    def box_center_world(self, name: str) -> np.ndarray:
+    def box_center_world(self, name: str) -> Array:
         """World position of the centre of ``name``'s collision box."""
         return self._box_center(self._pose_np(self.objects[name]), name)
 
-    def settled_center(self, name: str) -> np.ndarray:
+    def settled_center(self, name: str) -> Array:
         return self._box_center(self.spawn_report.settled_poses[name], name)
 
     def xy_displacement(self, name: str) -> float:
@@ -421,9 +422,9 @@ class LadevSceneEnv(BaseEnv):
     def z_displacement(self, name: str) -> float:
         return float(self.box_center_world(name)[2] - self.settled_center(name)[2])
 
-    def point_in_object_frame(self, name: str, p_world: np.ndarray) -> np.ndarray:
+    def point_in_object_frame(self, name: str, p_world: Array) -> Array:
         pose = self._pose_np(self.objects[name])
-        out: np.ndarray = quat_to_matrix(pose[3:]).T @ (np.asarray(p_world) - pose[:3])
+        out: Array = quat_to_matrix(pose[3:]).T @ (np.asarray(p_world) - pose[:3])
         return out
 
     def contact_force(self, a: Any, b: Any) -> float:
@@ -434,7 +435,7 @@ class LadevSceneEnv(BaseEnv):
         out: torch.Tensor = self.agent.is_grasping(self.objects[name]).reshape(1).cpu()
         return out
 
-    def teleport(self, name: str, p_world: np.ndarray, q: np.ndarray | None = None) -> None:
+    def teleport(self, name: str, p_world: Array, q: Array | None = None) -> None:
         """Place object ``name`` at a world position (and orientation), at rest."""
         actor = self.objects[name]
         q = self._pose_np(actor)[3:] if q is None else np.asarray(q, dtype=float)
@@ -469,7 +470,8 @@ class LadevSceneEnv(BaseEnv):
     def _keep_ids(self) -> torch.Tensor:
         ids = [link.per_scene_id for link in self.agent.robot.links]
         ids += [a.per_scene_id for a in self.objects.values()]
-        return torch.unique(torch.cat([i.cpu() for i in ids]))
+        kept: torch.Tensor = torch.unique(torch.cat([i.cpu() for i in ids]))
+        return kept
 
     def _with_overlay(self, rgb: torch.Tensor, seg: torch.Tensor) -> torch.Tensor:
         """Replace background pixels (not robot, not objects) of (1, H, W, 3) rgb by the real image."""
@@ -490,7 +492,7 @@ class LadevSceneEnv(BaseEnv):
             cam["rgb"] = self._with_overlay(cam["rgb"], seg)
         return obs
 
-    def policy_image(self, overlay: bool | None = None) -> np.ndarray:
+    def policy_image(self, overlay: bool | None = None) -> Array:
         """(H, W, 3) uint8 RGB from the policy camera, with the real background when active."""
         if POLICY_CAMERA not in self.scene.sensors:
             raise ConfigError("this env has no policy camera (made with image_size=None)")
@@ -500,23 +502,23 @@ class LadevSceneEnv(BaseEnv):
         cam.capture()
         obs = cam.get_obs(rgb=True, depth=False, position=False, segmentation=use_overlay)
         rgb = self._with_overlay(obs["rgb"], obs["segmentation"]) if use_overlay else obs["rgb"]
-        out: np.ndarray = rgb[0].cpu().numpy()
+        out: Array = rgb[0].cpu().numpy()
         return out
 
-    def policy_segmentation(self) -> np.ndarray:
+    def policy_segmentation(self) -> Array:
         """(H, W) int per-scene ids seen by the policy camera (for visibility checks)."""
         self.scene.update_render(update_sensors=True, update_human_render_cameras=False)
         cam = self.scene.sensors[POLICY_CAMERA]
         cam.capture()
-        seg: np.ndarray = cam.get_obs(rgb=False, depth=False, position=False, segmentation=True)[
+        seg: Array = cam.get_obs(rgb=False, depth=False, position=False, segmentation=True)[
             "segmentation"
         ][0, ..., 0].cpu().numpy()
         return seg
 
-    def overview_image(self) -> np.ndarray:
+    def overview_image(self) -> Array:
         """(H, W, 3) uint8 RGB from the overview camera (renders only, never the policy's input)."""
         self.scene.update_render(update_sensors=False, update_human_render_cameras=True)
         cam = self.scene.human_render_cameras[OVERVIEW_CAMERA]
         cam.capture()
-        out: np.ndarray = cam.get_obs(rgb=True, depth=False, position=False, segmentation=False)["rgb"][0].cpu().numpy()
+        out: Array = cam.get_obs(rgb=True, depth=False, position=False, segmentation=False)["rgb"][0].cpu().numpy()
         return out

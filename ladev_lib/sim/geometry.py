@@ -7,13 +7,15 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 
-def yaw_quat(yaw: float) -> np.ndarray:
+
+def yaw_quat(yaw: float) -> Array:
     """Rotation by ``yaw`` radians about +z."""
     return np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
 
 
-def quat_to_matrix(q: Sequence[float] | np.ndarray) -> np.ndarray:
+def quat_to_matrix(q: Sequence[float] | Array) -> Array:
     w, x, y, z = (float(v) for v in q)
     return np.array(
         [

@@ -30,6 +30,7 @@ import sapien
 import trimesh
 from transforms3d.euler import euler2quat
 
+from ladev_lib.arrays import Array
 from ladev_lib.catalog import CatalogObject
 from ladev_lib.scenes.feasibility import CONTAINER_WALL_M
 
@@ -48,9 +49,9 @@ class BuiltObject:
     name: str
     catalog_id: str
     source: ObjectSource
-    box_center: np.ndarray
+    box_center: Array
     """Centre of the collision box in the actor frame (m)."""
-    half_extents: np.ndarray
+    half_extents: Array
     """Half size of the collision box along the actor's x, y, z (m)."""
 
     @property
@@ -82,7 +83,7 @@ _X_TO_Z = sapien.Pose(q=euler2quat(0, -math.pi / 2, 0))
 _X_TO_Y = sapien.Pose(q=euler2quat(0, 0, math.pi / 2))
 
 
-def _standin_shapes(obj: CatalogObject) -> tuple[list[tuple[str, sapien.Pose, tuple[float, ...]]], np.ndarray]:
+def _standin_shapes(obj: CatalogObject) -> tuple[list[tuple[str, sapien.Pose, tuple[float, ...]]], Array]:
     """Primitive shapes (kind, local pose, dimensions) and the half extents they span."""
     sx, sy, sz = obj.size_m
     shape = obj.shape
@@ -142,7 +143,7 @@ def _volume(kind: str, dims: tuple[float, ...]) -> float:
     raise ValueError(kind)
 
 
-def add_standin_shapes(builder: sapien.ActorBuilder, obj: CatalogObject) -> np.ndarray:
+def add_standin_shapes(builder: sapien.ActorBuilder, obj: CatalogObject) -> Array:
     """Add the stand-in's collision and visual shapes; returns its half extents."""
     parts, half = _standin_shapes(obj)
     density = obj.mass_kg / sum(_volume(kind, dims) for kind, _, dims in parts)
@@ -195,7 +196,7 @@ def cooked_hull_volume(collision_file: str) -> float:
     return volume
 
 
-def _mesh_box(collision_file: str, upright: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+def _mesh_box(collision_file: str, upright: tuple[float, float, float]) -> tuple[Array, Array]:
     """(centre, half extents) of the collision mesh after the upright rotation."""
     mesh = trimesh.load(collision_file, force="mesh")
     q = euler2quat(*np.radians(upright))
@@ -219,7 +220,7 @@ def mesh_files(obj: CatalogObject, asset_dir: Path | None) -> tuple[Path, Path] 
 
 def add_mesh_shapes(
     builder: sapien.ActorBuilder, obj: CatalogObject, files: tuple[Path, Path]
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[Array, Array]:
     """Add the real mesh's hulls and visual; returns (box centre, half extents)."""
     assert obj.mesh is not None
     collision, visual = files

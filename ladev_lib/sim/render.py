@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.scenes.spec import SceneSpec
 from ladev_lib.sim.config import SimConfig
 
@@ -23,9 +24,9 @@ from ladev_lib.sim.config import SimConfig
 class SceneShots:
     """Images of one built scene and what was built."""
 
-    policy: np.ndarray
+    policy: Array
     """(H, W, 3) uint8: what the policy sees (with the real background when active)."""
-    overview: np.ndarray
+    overview: Array
     """(H, W, 3) uint8: a wider view from the front-right of the workspace."""
     object_sources: dict[str, str]
     robot: str
@@ -66,13 +67,13 @@ def render_spec(
     )
 
 
-def side_by_side(left: np.ndarray, right: np.ndarray, gap: int = 4) -> np.ndarray:
+def side_by_side(left: Array, right: Array, gap: int = 4) -> Array:
     """Both images at the taller one's height, left to right, on a white background."""
     from PIL import Image
 
     h = max(left.shape[0], right.shape[0])
 
-    def fit(img: np.ndarray) -> np.ndarray:
+    def fit(img: Array) -> Array:
         if img.shape[0] == h:
             return img
         w = round(img.shape[1] * h / img.shape[0])

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.registry import Registry
 from ladev_lib.sim.geometry import look_at, quat_mul, quat_to_matrix
 
@@ -54,7 +55,7 @@ class PinholeCamera:
     near: float = 0.01
     far: float = 10.0
 
-    def intrinsic(self, size: tuple[int, int]) -> np.ndarray:
+    def intrinsic(self, size: tuple[int, int]) -> Array:
         sx = size[0] / self.native_size[0]
         sy = size[1] / self.native_size[1]
         return np.array(
@@ -106,21 +107,21 @@ class RobotProfile:
     def table_top_z(self) -> float:
         return self.workspace_origin[2]
 
-    def workspace_to_world(self, x: float, y: float, z: float = 0.0) -> np.ndarray:
+    def workspace_to_world(self, x: float, y: float, z: float = 0.0) -> Array:
         c, s = math.cos(self.workspace_yaw), math.sin(self.workspace_yaw)
         ox, oy, oz = self.workspace_origin
         return np.array([ox + c * x - s * y, oy + s * x + c * y, oz + z])
 
-    def world_to_workspace(self, p: np.ndarray) -> np.ndarray:
+    def world_to_workspace(self, p: Array) -> Array:
         c, s = math.cos(self.workspace_yaw), math.sin(self.workspace_yaw)
         d = np.asarray(p, dtype=float)[:3] - np.asarray(self.workspace_origin)
         return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]])
 
-    def workspace_vector_to_world(self, v: tuple[float, float, float]) -> np.ndarray:
+    def workspace_vector_to_world(self, v: tuple[float, float, float]) -> Array:
         c, s = math.cos(self.workspace_yaw), math.sin(self.workspace_yaw)
         return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]])
 
-    def horizontal_reach(self, world_xy: np.ndarray) -> float:
+    def horizontal_reach(self, world_xy: Array) -> float:
         return float(np.hypot(world_xy[0] - self.base_xyz[0], world_xy[1] - self.base_xyz[1]))
 
 

@@ -28,6 +28,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ladev_lib.arrays import Array
+
 if TYPE_CHECKING:
     from ladev_lib.sim.env import LadevSceneEnv
 
@@ -57,10 +59,10 @@ class ValidityVerdict:
         return "; ".join(self.reasons)
 
 
-def _tilt_deg(q_from: np.ndarray, q_to: np.ndarray) -> float:
+def _tilt_deg(q_from: Array, q_to: Array) -> float:
     """Angle between the two orientations' z axes (how far the object tipped)."""
 
-    def z_axis(q: np.ndarray) -> np.ndarray:
+    def z_axis(q: Array) -> Array:
         w, x, y, z = q
         return np.array([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)])
 
