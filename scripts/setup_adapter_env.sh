@@ -6,7 +6,7 @@
 # and OpenVLA (transformers 4.40 + timm 0.9) conflict with each other and with
 # the core install, hence one environment each.
 #
-#   scripts/setup_adapter_env.sh rt1|octo|openvla
+#   scripts/setup_adapter_env.sh rt1|octo|openvla|lerobot
 #   TF_SPEC / JAX_SPEC / TORCH_SPEC   the framework build (CPU by default)
 #   OCTO_SPEC                         where to install Octo's model code from
 #                                     (a local checkout or a git URL); PyPI's
@@ -15,7 +15,7 @@
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
-FAMILY="${1:?usage: setup_adapter_env.sh rt1|octo|openvla}"
+FAMILY="${1:?usage: setup_adapter_env.sh rt1|octo|openvla|lerobot}"
 PYTHON="${LADEV_PYTHON:-python3}"
 VENV="${ADAPTER_VENV:-.venv-$FAMILY}"
 case "$FAMILY" in
@@ -23,7 +23,10 @@ case "$FAMILY" in
     octo) FRAMEWORK="${JAX_SPEC:-jax[cpu]==0.4.20}" ;;
     # The CPU wheel the core install uses; on a GPU machine pick a CUDA build.
     openvla) FRAMEWORK="${TORCH_SPEC:-torch==2.13.0}" ;;
-    *) echo "unknown adapter family '$FAMILY' (rt1, octo, openvla)" >&2; exit 2 ;;
+    # LeRobot 0.4.4 pins torch < 2.11: the newest release of that range (from
+    # PyPI, a CUDA build on x86_64; the CPU wheel on this disk is too new).
+    lerobot) FRAMEWORK="${TORCH_SPEC:-torch==2.10.0}" ;;
+    *) echo "unknown adapter family '$FAMILY' (rt1, octo, openvla, lerobot)" >&2; exit 2 ;;
 esac
 REQ="mk/adapters/$FAMILY.txt"
 NODEPS="mk/adapters/$FAMILY.nodeps.txt"
