@@ -41,6 +41,10 @@ def test_state_layouts() -> None:
     np.testing.assert_allclose(state_vector(proprio, "qpos", 3, "s"), [0.1, 0.2, 0.3], rtol=1e-6)
     np.testing.assert_allclose(state_vector(proprio, "tcp_pose", 7, "s"), proprio[3:], rtol=1e-6)
     np.testing.assert_allclose(state_vector(proprio, "tcp_euler", 6, "s"), [1, 2, 3, 0, 0, math.pi / 2], atol=1e-6)
+    # LIBERO: xyz, axis-angle of a 90 degree yaw, the last two joints (the fingers)
+    np.testing.assert_allclose(
+        state_vector(proprio, "libero", 8, "s"), [1, 2, 3, 0, 0, math.pi / 2, 0.2, 0.3], atol=1e-6
+    )
     assert state_vector(None, "zeros", 4, "s").tolist() == [0, 0, 0, 0]
     with pytest.raises(ValueError, match=r"'observation.state' has 8 values; state_layout 'qpos' gives 3"):
         state_vector(proprio, "qpos", 8, "observation.state")
@@ -65,6 +69,8 @@ def test_action_mapper_widowx_euler_and_panda_libero() -> None:
     panda = ActionMapper(LEROBOT_EMBODIMENTS["panda"], "ee_delta_axis_angle", "signed_close", action_scale=0.5)
     # LIBERO: -1 = open -> +1 for ManiSkill's Panda gripper; translation and rotation halved
     np.testing.assert_allclose(panda(np.array([0.2, 0, 0, 0, 0.4, 0, -1.0])), [0.1, 0, 0, 0, 0.2, 0, 1.0])
+    split = ActionMapper(LEROBOT_EMBODIMENTS["panda"], "ee_delta_axis_angle", "signed_close", 0.5, 5.0)
+    np.testing.assert_allclose(split(np.array([0.2, 0, 0, 0, 0.04, 0, 1.0])), [0.1, 0, 0, 0, 0.2, 0, -1.0])
     assert ActionMapper(EMBODIMENTS["widowx"], "joint_pos")(np.arange(8.0)).tolist() == list(range(8))
     with pytest.raises(ValueError, match=">= 7 action values"):
         widowx(np.zeros(6))

@@ -37,8 +37,8 @@ from ladev_lib.policies.adapters.common import (
     euler_to_axis_angle,
 )
 
-StateLayout = Literal["proprio", "qpos", "tcp_pose", "tcp_euler", "zeros"]
-STATE_LAYOUTS: tuple[str, ...] = ("proprio", "qpos", "tcp_pose", "tcp_euler", "zeros")
+StateLayout = Literal["proprio", "qpos", "tcp_pose", "tcp_euler", "libero", "zeros"]
+STATE_LAYOUTS: tuple[str, ...] = ("proprio", "qpos", "tcp_pose", "tcp_euler", "libero", "zeros")
 ActionLayout = Literal["ee_delta_euler", "ee_delta_axis_angle", "joint_pos"]
 ACTION_LAYOUTS: tuple[str, ...] = ("ee_delta_euler", "ee_delta_axis_angle", "joint_pos")
 GripperConvention = Literal["open_is_1", "close_is_1", "signed_open", "signed_close"]
@@ -92,11 +92,27 @@ def quat_to_euler(wxyz: np.ndarray) -> np.ndarray:
     return np.array([roll, pitch, yaw])
 
 
+def quat_to_axis_angle(wxyz: np.ndarray) -> np.ndarray:
+    """Axis-angle vector (axis * angle, angle in [0, pi]) of a quaternion (w, x, y, z)."""
+    q = np.asarray(wxyz, dtype=np.float64).reshape(4)
+    q = q / np.linalg.norm(q)
+    if q[0] < 0:  # the same rotation with the angle in [0, pi]
+        q = -q
+    sin_half = float(np.linalg.norm(q[1:]))
+    if sin_half < 1e-12:
+        return np.zeros(3)
+    angle = 2.0 * math.atan2(sin_half, float(q[0]))
+    result: np.ndarray = q[1:] / sin_half * angle
+    return result
+
+
 def state_vector(proprio: np.ndarray | None, layout: str, dim: int, feature: str) -> np.ndarray:
     """The checkpoint's ``feature`` (shape (dim,)) from LADEV's proprio, in ``layout``.
 
     proprio (qpos of n joints, then the TCP pose xyz + wxyz), tcp_pose (the last
-    7), tcp_euler (xyz + roll-pitch-yaw), qpos (the joints), zeros (the
+    7), tcp_euler (xyz + roll-pitch-yaw), qpos (the joints), libero (LIBERO's
+    8 values: TCP xyz, its orientation as axis-angle, the two gripper finger
+    joints, which are the last two joints of LADEV's Panda), zeros (the
     checkpoint's state is not one LADEV can give: a constant, said so in the config).
     """
     _choice(layout, STATE_LAYOUTS, "state_layout")
@@ -116,6 +132,8 @@ def state_vector(proprio: np.ndarray | None, layout: str, dim: int, feature: str
         out = p[:-TCP_POSE_DIM]
     elif layout == "tcp_pose":
         out = tcp
+    elif layout == "libero":
+        out = np.concatenate([tcp[:3], quat_to_axis_angle(tcp[3:]), p[:-TCP_POSE_DIM][-2:]])
     else:  # tcp_euler
         out = np.concatenate([tcp[:3], quat_to_euler(tcp[3:])])
     if out.shape[0] != dim:
@@ -162,7 +180,9 @@ class ActionMapper:
     """The checkpoint's action vector -> the LADEV robot's controller action.
 
     ee_delta_euler / ee_delta_axis_angle: ``[dx, dy, dz, rotation (3), gripper]``
-    -> :mod:`.common`'s 7-vector (axis-angle rotation; the gripper as the
+    -> :mod:`.common`'s 7-vector (axis-angle rotation; translation times
+    ``action_scale``, rotation times ``rotation_scale`` (default: the same),
+    for a checkpoint whose controller had other units; the gripper as the
     robot takes it: a relative command held for a few steps on the Google
     robot, a binary +1 open / -1 close target on WidowX and the Panda).
     Extra entries (padded action dimensions) are ignored. joint_pos: the vector
@@ -175,11 +195,13 @@ class ActionMapper:
         layout: str = "ee_delta_euler",
         gripper_convention: str = "open_is_1",
         action_scale: float = 1.0,
+        rotation_scale: float | None = None,
     ) -> None:
         self.emb = emb
         self.layout = _choice(layout, ACTION_LAYOUTS, "action_layout")
         self.gripper_convention = _choice(gripper_convention, GRIPPER_CONVENTIONS, "gripper_convention")
         self.action_scale = float(action_scale)
+        self.rotation_scale = self.action_scale if rotation_scale is None else float(rotation_scale)
         self.sticky = StickyGripper(emb.sticky_gripper_steps)
 
     def reset(self) -> None:
@@ -200,7 +222,9 @@ class ActionMapper:
             gripper = self.sticky(open_amount)
         else:
             gripper = binarize_open_gripper(open_amount)
-        return assemble_action(a[:3], rot, gripper, self.action_scale)
+        out = assemble_action(a[:3], rot, gripper, self.action_scale)
+        out[3:6] = np.asarray(rot, dtype=np.float64) * self.rotation_scale
+        return out
 
 
 def describe_features(features: Mapping[str, tuple[str, tuple[int, ...]]]) -> str:

@@ -81,8 +81,11 @@ class LeRobotPolicy(Policy):
         action_layout: str = "ee_delta_euler",
         gripper_convention: str = "open_is_1",
         action_scale: float = 1.0,
+        rotation_scale: float | None = None,
         n_action_steps: int | None = None,
         task_template: str = "{instruction}",
+        config_overrides: dict[str, Any] | None = None,
+        tokenizer: str | None = None,
         local_files_only: bool = False,
         embodiments: dict[str, dict[str, Any]] | None = None,
         name: str = "lerobot",
@@ -96,7 +99,9 @@ class LeRobotPolicy(Policy):
             raise ConfigError(f"lerobot state_layout must be one of {list(STATE_LAYOUTS)}, got {state_layout!r}")
         self.task_template = task_template
         self.state_layout = state_layout
-        self.mapper = ActionMapper(self.emb, action_layout, gripper_convention, action_scale)
+        self.mapper = ActionMapper(
+            self.emb, action_layout, gripper_convention, action_scale, rotation_scale
+        )
         self.device = pick_device(device)
         self.checkpoint = checkpoint
 
@@ -107,6 +112,11 @@ class LeRobotPolicy(Policy):
                 f"{checkpoint}: a LeRobot {cfg.type!r} checkpoint, but the config says policy_type "
                 f"{policy_type!r}"
             )
+        for key, value in (config_overrides or {}).items():
+            # e.g. vlm_model_name: a local copy of SmolVLA's backbone (config, processor)
+            if not hasattr(cfg, key):
+                raise ConfigError(f"config_overrides: a {cfg.type} config has no field {key!r}")
+            setattr(cfg, key, value)
         cfg.device = self.device
         cfg.pretrained_path = Path(checkpoint) if Path(checkpoint).is_dir() else checkpoint  # type: ignore[assignment]
         if n_action_steps is not None:
@@ -120,10 +130,11 @@ class LeRobotPolicy(Policy):
             checkpoint, config=cfg, local_files_only=local_files_only
         )
         self.model.eval()
+        pre_overrides: dict[str, Any] = {"device_processor": {"device": self.device}}
+        if tokenizer is not None:  # a local tokenizer instead of the hub name saved with it
+            pre_overrides["tokenizer_processor"] = {"tokenizer_name": tokenizer}
         self.preprocessor, self.postprocessor = make_pre_post_processors(
-            cfg,
-            pretrained_path=checkpoint,
-            preprocessor_overrides={"device_processor": {"device": self.device}},
+            cfg, pretrained_path=checkpoint, preprocessor_overrides=pre_overrides
         )
         self.image_features, self.state_feature = self._map_inputs(image_features)
         self._instruction: str | None = None
