@@ -122,6 +122,95 @@ def build_tiny_act(
     return save_checkpoint(policy, cfg, dataset_stats(inputs, action_std), out)
 
 
+# Words of the tiny backbone's tokenizer (WordLevel: anything else is <unk>).
+TINY_VOCAB = [
+    "<unk>", "<pad>", "<|im_start|>", "<end_of_utterance>", "<fake_token_around_image>", "<image>",
+    "<global-img>", "pick", "up", "put", "the", "a", "red", "green", "can", "mug", "apple", "on", "in",
+    "plate", "bowl", "drawer", "stapler", "next", "to", ".", "\n",
+]
+
+
+def build_tiny_smolvlm(out: Path) -> Path:
+    """A stand-in for SmolVLM2-500M-Video-Instruct's hub files: a tiny SmolVLM config
+    (2-layer Llama text model, 1-layer SigLIP on 32x32 images) and a processor whose
+    tokenizer carries SmolVLM's image tokens. SmolVLA builds its backbone from these
+    (``vlm_model_name``) with random weights, as it does with ``load_vlm_weights=False``.
+    """
+    from tokenizers import Tokenizer, models, pre_tokenizers
+    from transformers import (
+        PreTrainedTokenizerFast,
+        SmolVLMConfig,
+        SmolVLMImageProcessor,
+        SmolVLMProcessor,
+        SmolVLMVideoProcessor,
+    )
+
+    out.mkdir(parents=True, exist_ok=True)
+    words = Tokenizer(models.WordLevel(vocab={w: i for i, w in enumerate(TINY_VOCAB)}, unk_token="<unk>"))
+    words.pre_tokenizer = pre_tokenizers.WhitespaceSplit()
+    special = {
+        "fake_image_token": "<fake_token_around_image>",
+        "image_token": "<image>",
+        "global_image_token": "<global-img>",
+        "end_of_utterance_token": "<end_of_utterance>",
+    }
+    tokenizer = PreTrainedTokenizerFast(
+        tokenizer_object=words, unk_token="<unk>", pad_token="<pad>", bos_token="<|im_start|>",
+        eos_token="<end_of_utterance>", additional_special_tokens=list(special.values()),
+        extra_special_tokens=special,
+    )
+    images = SmolVLMImageProcessor(do_resize=False, do_image_splitting=False, size={"longest_edge": 32},
+                                   max_image_size={"longest_edge": 32})
+    SmolVLMProcessor(image_processor=images, tokenizer=tokenizer, video_processor=SmolVLMVideoProcessor(),
+                     image_seq_len=4).save_pretrained(out)
+    SmolVLMConfig(
+        text_config={"model_type": "llama", "vocab_size": len(TINY_VOCAB), "hidden_size": 32,
+                     "intermediate_size": 64, "num_hidden_layers": 2, "num_attention_heads": 2,
+                     "num_key_value_heads": 1, "head_dim": 16, "max_position_embeddings": 256,
+                     "pad_token_id": 1},
+        vision_config={"hidden_size": 32, "intermediate_size": 64, "num_hidden_layers": 1,
+                       "num_attention_heads": 2, "image_size": 32, "patch_size": 8},
+        scale_factor=2, image_token_id=TINY_VOCAB.index("<image>"), vocab_size=len(TINY_VOCAB),
+    ).save_pretrained(out)
+    return out
+
+
+def build_tiny_smolvla(
+    out: Path,
+    backbone: Path,
+    state_dim: int = 8,
+    image_hw: tuple[int, int] = (64, 64),
+    action_std: float = 0.05,
+    cameras: tuple[str, ...] = ("image", "image2"),
+    seed: int = 0,
+) -> Path:
+    """A SmolVLA policy on the tiny backbone at ``backbone`` (LIBERO-like: two cameras,
+    8-value state, 7-value action), chunks of 4 actions, 2 flow-matching steps."""
+    from lerobot.policies.smolvla.configuration_smolvla import SmolVLAConfig
+    from lerobot.policies.smolvla.modeling_smolvla import SmolVLAPolicy
+
+    torch.manual_seed(seed)
+    inputs, outputs = tiny_features(state_dim, image_hw, cameras)
+    cfg = SmolVLAConfig(
+        input_features=inputs,
+        output_features=outputs,
+        chunk_size=4,
+        n_action_steps=4,
+        vlm_model_name=str(backbone),
+        load_vlm_weights=False,
+        num_vlm_layers=2,
+        expert_width_multiplier=0.5,
+        resize_imgs_with_padding=(32, 32),
+        tokenizer_max_length=16,
+        num_steps=2,
+        max_state_dim=16,
+        max_action_dim=16,
+        device="cpu",
+    )
+    policy = SmolVLAPolicy(cfg)
+    return save_checkpoint(policy, cfg, dataset_stats(inputs, action_std), out)
+
+
 BUILDERS = {"act": build_tiny_act}
 
 

@@ -29,6 +29,7 @@ pins torch < 2.11 and transformers < 5) and reaches the rollout through
 
 from __future__ import annotations
 
+import importlib.util
 from pathlib import Path
 from typing import Any
 
@@ -58,6 +59,20 @@ from ladev_lib.policies.base import EpisodeContext, Observation, Policy, PolicyS
 # Policies whose model fills a declared camera missing from the batch with an
 # empty, masked image (their prepare_images); for the others every image is needed.
 PADS_MISSING_CAMERAS = frozenset({"smolvla", "pi0", "pi05", "pi0_fast"})
+# LeRobot's PaliGemma policies refuse to build without its patched transformers
+# (a git branch, LeRobot's `pi` extra), which PyPI's transformers is not.
+NEEDS_PATCHED_TRANSFORMERS = frozenset({"pi0", "pi05", "pi0_fast"})
+PALIGEMMA_TOKENIZER = "google/paligemma-3b-pt-224"
+
+
+def hub_files(cfg: Any) -> list[str]:
+    """What a checkpoint of this type loads by hub name besides itself (for error messages)."""
+    if cfg.type == "smolvla":
+        return [f"{cfg.vlm_model_name} (the VLM's config, tokenizer and processor: "
+                "config_overrides.vlm_model_name and tokenizer)"]
+    if cfg.type in NEEDS_PATCHED_TRANSFORMERS:
+        return [f"{PALIGEMMA_TOKENIZER} (the tokenizer: set tokenizer)"]
+    return []
 
 
 def pick_device(device: str | None) -> str:
@@ -117,6 +132,16 @@ class LeRobotPolicy(Policy):
             if not hasattr(cfg, key):
                 raise ConfigError(f"config_overrides: a {cfg.type} config has no field {key!r}")
             setattr(cfg, key, value)
+        if cfg.type in NEEDS_PATCHED_TRANSFORMERS and importlib.util.find_spec(
+            "transformers.models.siglip.check"
+        ) is None:
+            import transformers
+
+            raise ConfigError(
+                f"LeRobot's {cfg.type} needs its patched transformers (install LeRobot's `pi` extra "
+                f"from a LeRobot checkout: pip install -e '.[pi]'); this environment has PyPI's "
+                f"transformers {transformers.__version__}"
+            )
         cfg.device = self.device
         cfg.pretrained_path = Path(checkpoint) if Path(checkpoint).is_dir() else checkpoint  # type: ignore[assignment]
         if n_action_steps is not None:
@@ -126,16 +151,25 @@ class LeRobotPolicy(Policy):
                                   f"got {n_action_steps}")
             cfg.n_action_steps = n_action_steps
         self.cfg = cfg
-        self.model = get_policy_class(cfg.type).from_pretrained(
-            checkpoint, config=cfg, local_files_only=local_files_only
-        )
-        self.model.eval()
         pre_overrides: dict[str, Any] = {"device_processor": {"device": self.device}}
         if tokenizer is not None:  # a local tokenizer instead of the hub name saved with it
             pre_overrides["tokenizer_processor"] = {"tokenizer_name": tokenizer}
-        self.preprocessor, self.postprocessor = make_pre_post_processors(
-            cfg, pretrained_path=checkpoint, preprocessor_overrides=pre_overrides
-        )
+        try:
+            self.model = get_policy_class(cfg.type).from_pretrained(
+                checkpoint, config=cfg, local_files_only=local_files_only
+            )
+            self.model.eval()
+            self.preprocessor, self.postprocessor = make_pre_post_processors(
+                cfg, pretrained_path=checkpoint, preprocessor_overrides=pre_overrides
+            )
+        except OSError as exc:  # transformers' "couldn't connect ... cached files"
+            needed = hub_files(cfg)
+            if not needed:
+                raise
+            raise ConfigError(
+                f"{checkpoint}: the {cfg.type} policy loads files by hub name that are not here: "
+                f"{'; '.join(needed)}. Point those settings at local copies. ({exc})"
+            ) from exc
         self.image_features, self.state_feature = self._map_inputs(image_features)
         self._instruction: str | None = None
         self._seed: int | None = None
