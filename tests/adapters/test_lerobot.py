@@ -94,7 +94,7 @@ def test_observation_reaches_the_model_as_the_checkpoint_declares(exact: str) ->
     assert batch["task"] == ["Put the carrot on the plate."]
     image = batch["observation.images.image"]
     assert tuple(image.shape) == (1, 3, 64, 64) and image.dtype == torch.float32
-    assert 0.0 <= float(image.min()) and float(image.max()) <= 1.0
+    assert float(image.min()) >= 0.0 and float(image.max()) <= 1.0
     processed = policy.preprocessor(batch)
     # The checkpoint's statistics, applied by its own normaliser: (x - mean) / std.
     st = state_stats(STATE_DIM)

@@ -143,7 +143,7 @@ class LeRobotPolicy(Policy):
                 f"transformers {transformers.__version__}"
             )
         cfg.device = self.device
-        cfg.pretrained_path = Path(checkpoint) if Path(checkpoint).is_dir() else checkpoint  # type: ignore[assignment]
+        cfg.pretrained_path = Path(checkpoint) if Path(checkpoint).is_dir() else checkpoint
         if n_action_steps is not None:
             chunk = getattr(cfg, "chunk_size", None)
             if n_action_steps < 1 or (chunk is not None and n_action_steps > chunk):
