@@ -167,3 +167,30 @@ def test_config_errors(exact: str) -> None:
         _policy(exact, image_features=["observation.images.wrist"])
     with pytest.raises(ConfigError, match="support robots"):
         _policy(exact, robot="ur5")
+
+
+def test_diffusion_keeps_an_observation_history_and_runs_chunks(tmp_path: Path) -> None:
+    from tests.adapters.tiny_lerobot import build_tiny_diffusion
+
+    ckpt = str(build_tiny_diffusion(tmp_path / "diffusion", state_dim=STATE_DIM))
+    policy = _policy(ckpt, "widowx")
+    assert policy.cfg.type == "diffusion" and policy.cfg.n_obs_steps == 2
+    chunks = []
+    original = policy.model.diffusion.generate_actions
+
+    def counted(batch, **kw):
+        chunks.append(batch["observation.state"].shape)
+        return original(batch, **kw)
+
+    policy.model.diffusion.generate_actions = counted
+    policy.reset("put the carrot on the plate")
+    actions = [policy.step(_obs()).action for _ in range(6)]
+    # One chunk of n_action_steps = 4 actions, then the next; each sees 2 observations.
+    assert len(chunks) == 2 and all(tuple(c)[:2] == (1, 2) for c in chunks)
+    for action in actions:
+        assert action.shape == (7,) and np.all(np.isfinite(action)) and action[6] in (-1.0, 1.0)
+    # Diffusion normalises actions min-max (the statistics' min/max are mean -+ 1) and
+    # clips its sample to [-1, 1]: the unnormalised action lies within [min, max].
+    assert policy.cfg.normalization_mapping["ACTION"].value == "MIN_MAX"
+    raw = policy.last_raw_action
+    assert np.all(np.abs(raw - ACTION_MEAN) <= 1.0 + 1e-6)

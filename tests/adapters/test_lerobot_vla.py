@@ -103,3 +103,60 @@ def test_pi0_family_names_what_to_install(kind: str, tmp_path: Path) -> None:
     ckpt = _config_only(tmp_path, cfg)
     with pytest.raises(ConfigError, match=rf"{kind} needs its patched transformers .*\[pi\]"):
         make_policy("lerobot", checkpoint=ckpt, robot="panda", device="cpu", policy_type=kind)
+
+
+def test_sampling_noise_is_seeded_per_episode(smolvla: str) -> None:
+    from ladev_lib.policies.base import EpisodeContext
+
+    policy = make_policy("lerobot", checkpoint=smolvla, robot="panda", device="cpu", state_layout="libero")
+    obs = Observation(image=load_frame("widowx"), proprio=PANDA_PROPRIO)
+
+    def first_action(seed: int | None, instruction: str = "pick up the red can") -> np.ndarray:
+        if seed is not None:
+            bounds = np.ones(7)
+            policy.begin_episode(EpisodeContext(seed=seed, robot="panda", action_low=-bounds, action_high=bounds))
+        policy.reset(instruction)
+        policy.step(obs)
+        return policy.last_raw_action.copy()
+
+    # In process: the episode seed decides the flow-matching noise.
+    np.testing.assert_array_equal(first_action(1), first_action(1))
+    assert not np.allclose(first_action(1), first_action(2))
+    # Served (no seed on the wire): the config's seed and the instruction decide it.
+    np.testing.assert_array_equal(first_action(None), first_action(None))
+    assert not np.allclose(first_action(None), first_action(None, "put the mug in the bowl"))
+
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def test_the_smolvla_config_entry_drives_the_panda(smolvla: str) -> None:
+    """conf/policy/smolvla_libero.yaml as `ladev serve-policy` composes it, on the tiny checkpoint."""
+    from ladev_lib.policies.configured import make_configured_policy
+
+    policy = make_configured_policy("smolvla_libero", REPO / "conf", {"checkpoint": smolvla, "device": "cpu"})
+    assert policy.info.robots == ("panda",) and policy.info.control_freq_hz == 20.0
+    assert policy.info.image_size == (256, 256) and policy.info.control_mode == "pd_ee_delta_pose"
+    policy.reset("put the mug in the bowl")
+    step = policy.step(Observation(image=np.zeros((256, 256, 3), np.uint8), proprio=PANDA_PROPRIO))
+    raw = policy.last_raw_action
+    # LIBERO's conventions: translation x 0.5, axis-angle x 5, gripper +1 close -> -1 close.
+    np.testing.assert_allclose(step.action[:3], raw[:3] * 0.5, rtol=1e-9)
+    np.testing.assert_allclose(step.action[3:6], raw[3:6] * 5.0, rtol=1e-9)
+    assert step.action[6] == (1.0 if (1.0 - raw[6]) / 2.0 > 0.5 else -1.0)
+
+
+@pytest.mark.parametrize("entry", ["pi0_libero", "pi05_libero"])
+def test_the_pi0_config_entries_refuse_clearly(entry: str, tmp_path: Path) -> None:
+    from lerobot.policies.pi0.configuration_pi0 import PI0Config
+    from lerobot.policies.pi05.configuration_pi05 import PI05Config
+
+    from ladev_lib.policies.configured import make_configured_policy
+
+    if importlib.util.find_spec("transformers.models.siglip.check") is not None:
+        pytest.skip("LeRobot's patched transformers is installed here")
+    inputs, outputs = tiny_features(8, (224, 224), ("image", "image2"))
+    cls = PI0Config if entry == "pi0_libero" else PI05Config
+    ckpt = _config_only(tmp_path, cls(input_features=inputs, output_features=outputs, device="cpu"))
+    with pytest.raises(ConfigError, match="patched transformers"):
+        make_configured_policy(entry, REPO / "conf", {"checkpoint": ckpt, "device": "cpu"})

@@ -211,7 +211,43 @@ def build_tiny_smolvla(
     return save_checkpoint(policy, cfg, dataset_stats(inputs, action_std), out)
 
 
-BUILDERS = {"act": build_tiny_act}
+def build_tiny_diffusion(
+    out: Path,
+    state_dim: int = 16,
+    image_hw: tuple[int, int] = (64, 64),
+    action_std: float = 0.05,
+    seed: int = 0,
+) -> Path:
+    """A diffusion policy: 2 observations of history, a horizon of 8 of which 4 run,
+    a small U-Net and ResNet-18 (no pretrained weights), 3 DDIM denoising steps."""
+    from lerobot.policies.diffusion.configuration_diffusion import DiffusionConfig
+    from lerobot.policies.diffusion.modeling_diffusion import DiffusionPolicy
+
+    torch.manual_seed(seed)
+    inputs, outputs = tiny_features(state_dim, image_hw)
+    cfg = DiffusionConfig(
+        input_features=inputs,
+        output_features=outputs,
+        n_obs_steps=2,
+        horizon=8,
+        n_action_steps=4,
+        drop_n_last_frames=3,
+        crop_shape=None,
+        down_dims=(16, 32),
+        kernel_size=3,
+        n_groups=4,
+        diffusion_step_embed_dim=16,
+        spatial_softmax_num_keypoints=8,
+        noise_scheduler_type="DDIM",
+        num_train_timesteps=10,
+        num_inference_steps=3,
+        device="cpu",
+    )
+    policy = DiffusionPolicy(cfg)
+    return save_checkpoint(policy, cfg, dataset_stats(inputs, action_std), out)
+
+
+BUILDERS = {"act": build_tiny_act, "diffusion": build_tiny_diffusion}
 
 
 def main() -> None:

@@ -30,6 +30,7 @@ pins torch < 2.11 and transformers < 5) and reaches the rollout through
 from __future__ import annotations
 
 import importlib.util
+import zlib
 from pathlib import Path
 from typing import Any
 
@@ -101,6 +102,7 @@ class LeRobotPolicy(Policy):
         task_template: str = "{instruction}",
         config_overrides: dict[str, Any] | None = None,
         tokenizer: str | None = None,
+        seed: int = 0,
         local_files_only: bool = False,
         embodiments: dict[str, dict[str, Any]] | None = None,
         name: str = "lerobot",
@@ -172,7 +174,8 @@ class LeRobotPolicy(Policy):
             ) from exc
         self.image_features, self.state_feature = self._map_inputs(image_features)
         self._instruction: str | None = None
-        self._seed: int | None = None
+        self.seed = int(seed)
+        self._episode_seed: int | None = None
         self.last_raw_action = np.zeros(0)
 
     # ------------------------------------------------------------------ features
@@ -224,13 +227,21 @@ class LeRobotPolicy(Policy):
     # ------------------------------------------------------------------ episode
 
     def begin_episode(self, ctx: EpisodeContext) -> None:
-        # Diffusion / flow-matching policies sample noise: draw it from the episode seed.
-        self._seed = ctx.seed
+        self._episode_seed = ctx.seed
 
     def reset(self, instruction: str) -> None:
+        """Start an episode: an empty action queue and seeded sampling noise.
+
+        Diffusion and flow-matching policies sample noise. In process the episode
+        seed (begin_episode) decides it; served, where the protocol carries no
+        seed, ``seed`` and the instruction do, so a rerun gives the same actions.
+        """
         self._instruction = instruction
-        if self._seed is not None:
-            torch.manual_seed(self._seed)
+        if self._episode_seed is not None:
+            episode_seed, self._episode_seed = self._episode_seed, None
+        else:
+            episode_seed = zlib.crc32(f"{self.seed}:{instruction}".encode())
+        torch.manual_seed(episode_seed)
         self.model.reset()  # empties select_action's queue
         self.preprocessor.reset()
         self.postprocessor.reset()
