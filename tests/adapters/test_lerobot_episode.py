@@ -1,7 +1,9 @@
 """One episode end to end: a LeRobot policy served from .venv-lerobot, rolled out by the core.
 
-The LeRobot environment writes a tiny ACT checkpoint (LeRobot's own classes and
-save methods) and serves it with ``ladev serve-policy lerobot``; the core
+The LeRobot environment writes a tiny checkpoint (LeRobot's own classes and
+save methods: ACT, and SmolVLA on a tiny local backbone) and serves it with
+``ladev serve-policy`` (the registry name ``lerobot``, and the
+``smolvla_libero`` config entry); the core
 install's rollout stage (stages/rollout.py, the simulator, the ``remote``
 policy) runs one Panda scene against that server and writes the judged
 episode row to data/episodes/<label>.parquet.
@@ -47,14 +49,14 @@ def _env() -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": str(REPO), "HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1"}
 
 
-def _serve(python: Path, checkpoint: Path) -> tuple[subprocess.Popen[str], str]:
+def _serve(python: Path, entry: str, overrides: dict[str, object]) -> tuple[subprocess.Popen[str], str]:
     embodiments = {"panda": {"image_size": [128, 128], "episode_steps": {"pick_up": STEPS}}}
+    sets: list[str] = []
+    for key, value in {**overrides, "robot": "panda", "device": "cpu", "embodiments": embodiments}.items():
+        sets += ["--set", f"{key}={json.dumps(value)}"]
     proc = subprocess.Popen(
-        [str(python), "-c", "from ladev_lib.cli import main; main()", "serve-policy", "lerobot",
-         "--port", "0", "--config-dir", str(REPO / "conf"),
-         "--set", f"checkpoint={checkpoint}", "--set", "robot=panda", "--set", "device=cpu",
-         "--set", "state_layout=proprio",
-         "--set", f"embodiments={json.dumps(embodiments)}"],
+        [str(python), "-c", "from ladev_lib.cli import main; main()", "serve-policy", entry,
+         "--port", "0", "--config-dir", str(REPO / "conf"), *sets],
         cwd=REPO, env=_env(), stderr=subprocess.PIPE, text=True,
     )
     assert proc.stderr is not None
@@ -71,11 +73,22 @@ def _serve(python: Path, checkpoint: Path) -> tuple[subprocess.Popen[str], str]:
     raise AssertionError("serve-policy did not start:\n" + "".join(lines[-30:]))
 
 
-def test_core_rollout_against_a_served_lerobot_policy(lerobot_python: Path, tmp_path: Path) -> None:
-    checkpoint = tmp_path / "tiny-act"
+# (tiny checkpoint, its state size, what `ladev serve-policy` serves, overrides):
+# ACT by the registry name with the whole proprio (the Panda: 9 joints + TCP pose);
+# SmolVLA by the conf/policy/smolvla_libero.yaml entry, with LIBERO's 8-value state.
+SERVED = {
+    "act": ("act", 16, "lerobot", {"state_layout": "proprio"}),
+    "smolvla_libero": ("smolvla", 8, "smolvla_libero", {}),
+}
+
+
+@pytest.mark.parametrize("served", sorted(SERVED))
+def test_core_rollout_against_a_served_lerobot_policy(served: str, lerobot_python: Path, tmp_path: Path) -> None:
+    kind, state_dim, entry, overrides = SERVED[served]
+    checkpoint = tmp_path / f"tiny-{kind}"
     built = subprocess.run(
-        [str(lerobot_python), "-m", "tests.adapters.tiny_lerobot", "act", str(checkpoint),
-         "--state-dim", "16", "--image", "64x64", "--std", "0.05"],  # the Panda: 9 joints + TCP pose
+        [str(lerobot_python), "-m", "tests.adapters.tiny_lerobot", kind, str(checkpoint),
+         "--state-dim", str(state_dim), "--image", "64x64", "--std", "0.05"],
         cwd=REPO, env=_env(), capture_output=True, text=True, timeout=300,
     )
     assert built.returncode == 0, built.stderr
@@ -95,7 +108,7 @@ def test_core_rollout_against_a_served_lerobot_policy(lerobot_python: Path, tmp_
                                 text="lift the red can off the table", valid=True, selected=True)],
                 data / "instructions.parquet", InstructionRow)
 
-    proc, url = _serve(lerobot_python, checkpoint)
+    proc, url = _serve(lerobot_python, entry, {**overrides, "checkpoint": str(checkpoint)})
     try:
         params = yaml.safe_load((REPO / "params.yaml").read_text())
         params["policy"] = {"lerobot_act": {"name": "remote", "url": url, "wait_for_server_s": 60}}

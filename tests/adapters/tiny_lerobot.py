@@ -1,6 +1,6 @@
 """Tiny, randomly initialised LeRobot checkpoints, written with LeRobot's own save methods.
 
-    python -m tests.adapters.tiny_lerobot act OUT_DIR [--state-dim 16] [--image 64x64] [--std 0.0]
+    python -m tests.adapters.tiny_lerobot act|diffusion|smolvla OUT_DIR [--state-dim 16] [--image 64x64] [--std 0.0]
 
 A checkpoint directory as LeRobot's training writes it: ``config.json`` and
 ``model.safetensors`` (``policy.save_pretrained``) beside the pre- and
@@ -247,7 +247,18 @@ def build_tiny_diffusion(
     return save_checkpoint(policy, cfg, dataset_stats(inputs, action_std), out)
 
 
-BUILDERS = {"act": build_tiny_act, "diffusion": build_tiny_diffusion}
+def build_tiny_smolvla_with_backbone(out: Path, state_dim: int = 8, image_hw: tuple[int, int] = (64, 64),
+                                     action_std: float = 0.05) -> Path:
+    """SmolVLA with its tiny backbone written beside it (``<out>-smolvlm``)."""
+    backbone = build_tiny_smolvlm(out.parent / f"{out.name}-smolvlm")
+    return build_tiny_smolvla(out, backbone, state_dim=state_dim, image_hw=image_hw, action_std=action_std)
+
+
+BUILDERS = {
+    "act": build_tiny_act,
+    "diffusion": build_tiny_diffusion,
+    "smolvla": build_tiny_smolvla_with_backbone,
+}
 
 
 def main() -> None:
