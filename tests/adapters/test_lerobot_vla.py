@@ -160,3 +160,42 @@ def test_the_pi0_config_entries_refuse_clearly(entry: str, tmp_path: Path) -> No
     ckpt = _config_only(tmp_path, cls(input_features=inputs, output_features=outputs, device="cpu"))
     with pytest.raises(ConfigError, match="patched transformers"):
         make_configured_policy(entry, REPO / "conf", {"checkpoint": ckpt, "device": "cpu"})
+
+
+@pytest.mark.manual
+def test_gpu_steps(smolvla: str, tmp_path: Path) -> None:
+    """The tiny ACT and SmolVLA on a GPU through the same adapter code (LADEV_MANUAL=1).
+
+    .venv-lerobot's torch is PyPI's CUDA build: on a GPU machine nothing else is needed.
+    """
+    from tests.adapters.tiny_lerobot import build_tiny_act
+
+    if not torch.cuda.is_available():
+        pytest.skip("no CUDA device")
+    act = str(build_tiny_act(tmp_path / "act", state_dim=8))
+    for ckpt in (act, smolvla):
+        policy = make_policy("lerobot", checkpoint=ckpt, robot="panda", state_layout="libero")  # device: auto
+        assert policy.device == "cuda" and next(policy.model.parameters()).device.type == "cuda"
+        policy.reset("pick up the red can")
+        obs = Observation(image=load_frame("widowx"), proprio=PANDA_PROPRIO)
+        actions = [policy.step(obs).action for _ in range(10)]
+        assert all(a.shape == (7,) and np.all(np.isfinite(a)) for a in actions)
+
+
+@pytest.mark.manual
+def test_real_checkpoint() -> None:
+    """A real LeRobot checkpoint through a conf/policy entry (LADEV_MANUAL=1):
+    LADEV_LEROBOT_CHECKPOINT=<dir or hub id>, LADEV_LEROBOT_ENTRY (default smolvla_libero)."""
+    import os
+
+    from ladev_lib.policies.configured import make_configured_policy
+
+    checkpoint = os.environ.get("LADEV_LEROBOT_CHECKPOINT")
+    if not checkpoint:
+        pytest.skip("set LADEV_LEROBOT_CHECKPOINT")
+    entry = os.environ.get("LADEV_LEROBOT_ENTRY", "smolvla_libero")
+    policy = make_configured_policy(entry, REPO / "conf", {"checkpoint": checkpoint})
+    policy.reset("pick up the red can")
+    obs = Observation(image=np.zeros((256, 256, 3), np.uint8), proprio=PANDA_PROPRIO)
+    actions = [policy.step(obs).action for _ in range(10)]
+    assert all(a.shape == (7,) and np.all(np.isfinite(a)) for a in actions)
