@@ -199,3 +199,22 @@ def test_real_checkpoint() -> None:
     obs = Observation(image=np.zeros((256, 256, 3), np.uint8), proprio=PANDA_PROPRIO)
     actions = [policy.step(obs).action for _ in range(10)]
     assert all(a.shape == (7,) and np.all(np.isfinite(a)) for a in actions)
+
+
+def test_local_copies_of_the_backbone_replace_the_names_saved(tmp_path: Path) -> None:
+    """What a user without a hub does: point vlm_model_name and the tokenizer at local copies."""
+    import shutil
+
+    backbone = build_tiny_smolvlm(tmp_path / "downloaded-smolvlm")
+    ckpt = str(build_tiny_smolvla(tmp_path / "smolvla", backbone))
+    moved = tmp_path / "models" / "SmolVLM2"
+    shutil.move(str(backbone), moved)  # the name saved in the checkpoint no longer resolves
+    with pytest.raises(ConfigError, match=r"downloaded-smolvlm .*vlm_model_name"):
+        make_policy("lerobot", checkpoint=ckpt, robot="panda", device="cpu", state_layout="libero")
+    policy = make_policy("lerobot", checkpoint=ckpt, robot="panda", device="cpu", state_layout="libero",
+                         config_overrides={"vlm_model_name": str(moved)}, tokenizer=str(moved))
+    policy.reset("pick up the red can")
+    step = policy.step(Observation(image=load_frame("widowx"), proprio=PANDA_PROPRIO))
+    assert step.action.shape == (7,) and np.all(np.isfinite(step.action))
+    with pytest.raises(ConfigError, match="no field 'vlm_name'"):
+        make_policy("lerobot", checkpoint=ckpt, robot="panda", device="cpu", config_overrides={"vlm_name": "x"})
