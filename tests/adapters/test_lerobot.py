@@ -194,3 +194,17 @@ def test_diffusion_keeps_an_observation_history_and_runs_chunks(tmp_path: Path) 
     assert policy.cfg.normalization_mapping["ACTION"].value == "MIN_MAX"
     raw = policy.last_raw_action
     assert np.all(np.abs(raw - ACTION_MEAN) <= 1.0 + 1e-6)
+
+
+def test_rotate_image_180_turns_the_frame_round(exact: str) -> None:
+    frame = load_frame("widowx")[:64, :64].copy()  # the checkpoint's size: no resize
+    upright = _policy(exact, "widowx")
+    turned = _policy(exact, "widowx", rotate_image_180=True)
+    for p in (upright, turned):
+        p.reset("x")
+    a = upright.batch(Observation(image=frame, proprio=_proprio()))["observation.images.image"]
+    b = turned.batch(Observation(image=frame, proprio=_proprio()))["observation.images.image"]
+    np.testing.assert_array_equal(b.numpy(), np.flip(a.numpy(), axis=(2, 3)))
+    assert not np.array_equal(a.numpy(), b.numpy())
+    full = turned.batch(Observation(image=load_frame("widowx"), proprio=_proprio()))  # resized too
+    assert tuple(full["observation.images.image"].shape) == (1, 3, 64, 64)

@@ -93,6 +93,7 @@ class LeRobotPolicy(Policy):
         device: str | None = None,
         policy_type: str | None = None,
         image_features: list[str] | None = None,
+        rotate_image_180: bool = False,
         state_layout: str = "proprio",
         action_layout: str = "ee_delta_euler",
         gripper_convention: str = "open_is_1",
@@ -115,6 +116,9 @@ class LeRobotPolicy(Policy):
         if state_layout not in STATE_LAYOUTS:
             raise ConfigError(f"lerobot state_layout must be one of {list(STATE_LAYOUTS)}, got {state_layout!r}")
         self.task_template = task_template
+        # For checkpoints trained on upside-down renders (raw LIBERO frames); LeRobot's
+        # own LIBERO env rotates them upright, as LADEV renders them.
+        self.rotate_image_180 = bool(rotate_image_180)
         self.state_layout = state_layout
         self.mapper = ActionMapper(
             self.emb, action_layout, gripper_convention, action_scale, rotation_scale
@@ -256,6 +260,8 @@ class LeRobotPolicy(Policy):
         raw: dict[str, Any] = {}
         if self.image_features:
             image = require_image(obs.image, f"LeRobot {self.cfg.type}")
+            if self.rotate_image_180:
+                image = np.ascontiguousarray(image[::-1, ::-1])
             pixels = {k: fit_image(image, shape) for k, shape in self.image_features.items()}
             if list(pixels) == [OBS_IMAGE]:
                 raw["pixels"] = pixels[OBS_IMAGE]
