@@ -157,6 +157,8 @@ class LeRobotPolicy(Policy):
                                   f"got {n_action_steps}")
             cfg.n_action_steps = n_action_steps
         self.cfg = cfg
+        # Checked before any weights load: a missing input fails in seconds, not after GBs.
+        self.image_features, self.state_feature = self._map_inputs(image_features)
         pre_overrides: dict[str, Any] = {"device_processor": {"device": self.device}}
         if tokenizer is not None:  # a local tokenizer instead of the hub name saved with it
             pre_overrides["tokenizer_processor"] = {"tokenizer_name": tokenizer}
@@ -176,7 +178,6 @@ class LeRobotPolicy(Policy):
                 f"{checkpoint}: the {cfg.type} policy loads files by hub name that are not here: "
                 f"{'; '.join(needed)}. Point those settings at local copies. ({exc})"
             ) from exc
-        self.image_features, self.state_feature = self._map_inputs(image_features)
         self._instruction: str | None = None
         self.seed = int(seed)
         self._episode_seed: int | None = None
