@@ -2,12 +2,14 @@
 # Create (idempotently) the virtual environment one VLA family's adapter runs
 # and is tested in: .venv-<family> with that family's pinned stack, ladev
 # installed --no-deps on top, and the light dependencies ladev's own modules
-# and tests need. The stacks of RT-1 (TensorFlow + tf-agents), Octo (JAX/Flax)
-# and OpenVLA (transformers 4.40 + timm 0.9) conflict with each other and with
-# the core install, hence one environment each.
+# and tests need. The stacks of RT-1 (TensorFlow + tf-agents), Octo (JAX/Flax),
+# OpenVLA (transformers 4.40 + timm 0.9) and LeRobot (torch < 2.11,
+# transformers 4.57) conflict with each other and with the core install,
+# hence one environment each.
 #
 #   scripts/setup_adapter_env.sh rt1|octo|openvla|lerobot
-#   TF_SPEC / JAX_SPEC / TORCH_SPEC   the framework build (CPU by default)
+#   TF_SPEC / JAX_SPEC / TORCH_SPEC   the framework build (CPU by default; for
+#                                     lerobot PyPI's torch 2.10, a CUDA build)
 #   OCTO_SPEC                         where to install Octo's model code from
 #                                     (a local checkout or a git URL); PyPI's
 #                                     "octo" is an unrelated package
