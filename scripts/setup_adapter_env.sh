@@ -2,12 +2,14 @@
 # Create (idempotently) the virtual environment one VLA family's adapter runs
 # and is tested in: .venv-<family> with that family's pinned stack, ladev
 # installed --no-deps on top, and the light dependencies ladev's own modules
-# and tests need. The stacks of RT-1 (TensorFlow + tf-agents), Octo (JAX/Flax)
-# and OpenVLA (transformers 4.40 + timm 0.9) conflict with each other and with
-# the core install, hence one environment each.
+# and tests need. The stacks of RT-1 (TensorFlow + tf-agents), Octo (JAX/Flax),
+# OpenVLA (transformers 4.40 + timm 0.9) and LeRobot (torch < 2.11,
+# transformers 4.57) conflict with each other and with the core install,
+# hence one environment each.
 #
-#   scripts/setup_adapter_env.sh rt1|octo|openvla
-#   TF_SPEC / JAX_SPEC / TORCH_SPEC   the framework build (CPU by default)
+#   scripts/setup_adapter_env.sh rt1|octo|openvla|lerobot
+#   TF_SPEC / JAX_SPEC / TORCH_SPEC   the framework build (CPU by default; for
+#                                     lerobot PyPI's torch 2.10, a CUDA build)
 #   OCTO_SPEC                         where to install Octo's model code from
 #                                     (a local checkout or a git URL); PyPI's
 #                                     "octo" is an unrelated package
@@ -15,7 +17,7 @@
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
-FAMILY="${1:?usage: setup_adapter_env.sh rt1|octo|openvla}"
+FAMILY="${1:?usage: setup_adapter_env.sh rt1|octo|openvla|lerobot}"
 PYTHON="${LADEV_PYTHON:-python3}"
 VENV="${ADAPTER_VENV:-.venv-$FAMILY}"
 case "$FAMILY" in
@@ -23,7 +25,10 @@ case "$FAMILY" in
     octo) FRAMEWORK="${JAX_SPEC:-jax[cpu]==0.4.20}" ;;
     # The CPU wheel the core install uses; on a GPU machine pick a CUDA build.
     openvla) FRAMEWORK="${TORCH_SPEC:-torch==2.13.0}" ;;
-    *) echo "unknown adapter family '$FAMILY' (rt1, octo, openvla)" >&2; exit 2 ;;
+    # LeRobot 0.4.4 pins torch < 2.11: the newest release of that range (from
+    # PyPI, a CUDA build on x86_64; the CPU wheel on this disk is too new).
+    lerobot) FRAMEWORK="${TORCH_SPEC:-torch==2.10.0}" ;;
+    *) echo "unknown adapter family '$FAMILY' (rt1, octo, openvla, lerobot)" >&2; exit 2 ;;
 esac
 REQ="mk/adapters/$FAMILY.txt"
 NODEPS="mk/adapters/$FAMILY.nodeps.txt"

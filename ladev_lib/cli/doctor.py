@@ -6,6 +6,7 @@ import importlib
 import importlib.metadata
 import os
 import sys
+from pathlib import Path
 
 import click
 
@@ -17,7 +18,32 @@ EXTRAS = {
     "rt1": ["tensorflow", "tf_agents"],
     "octo": ["jax", "flax", "octo.model.octo_model"],  # PyPI's "octo" is another package
     "openvla": ["transformers", "timm"],
+    "lerobot": ["lerobot.policies.factory"],
 }
+
+
+# The VLA families' own environments (make adapter-env-<family>), and the
+# distribution that shows each one is complete.
+ADAPTER_ENVS = {
+    "rt1": "tf_agents",
+    "octo": "flax",
+    "openvla": "transformers",
+    "lerobot": "lerobot",
+}
+
+
+def adapter_env_status(root: Path, family: str) -> tuple[bool, str]:
+    """(usable, detail) of ``root/.venv-<family>``, read from disk without starting it."""
+    venv = root / f".venv-{family}"
+    if not (venv / "bin" / "python").exists():
+        return False, f"{venv} not found (make adapter-env-{family})"
+    dist = ADAPTER_ENVS[family]
+    found = sorted(venv.glob(f"lib/python*/site-packages/{dist}-*.dist-info"))
+    if not found:
+        return False, f"{venv} exists but has no {dist} (make adapter-env-{family} to finish it)"
+    version = found[-1].name.removeprefix(f"{dist}-").removesuffix(".dist-info")
+    ready = (venv / ".ladev-adapter-stamp").exists()
+    return True, f"{venv} ({dist} {version}){'' if ready else ', set-up not finished'}"
 
 
 def _version(dist: str) -> str:
@@ -71,6 +97,11 @@ def command(config_dir: str | None) -> None:
         status = "ok" if len(present) == len(modules) else "info"
         detail = "importable" if status == "ok" else f"not installed (pip install 'ladev[{extra}]')"
         line(status, f"extra '{extra}'", detail)
+
+    # Served from their own environments: `<env>/bin/ladev serve-policy <config>`.
+    for family in ADAPTER_ENVS:
+        usable, detail = adapter_env_status(Path.cwd(), family)
+        line("ok" if usable else "info", f"{family} environment", detail)
 
     try:
         from ladev_lib.config import compose_config

@@ -37,6 +37,7 @@ POLICIES.add_lazy("remote", "ladev_lib.policies.remote:RemotePolicy")
 POLICIES.add_lazy("rt1", "ladev_lib.policies.adapters.rt1:RT1Policy", extra="rt1")
 POLICIES.add_lazy("octo", "ladev_lib.policies.adapters.octo:OctoPolicy", extra="octo")
 POLICIES.add_lazy("openvla", "ladev_lib.policies.adapters.openvla:OpenVLAPolicy", extra="openvla")
+POLICIES.add_lazy("lerobot", "ladev_lib.policies.adapters.lerobot_policy:LeRobotPolicy", extra="lerobot")
 
 
 def make_policy(name: str, **config: Any) -> Policy:

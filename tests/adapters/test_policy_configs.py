@@ -87,3 +87,44 @@ def test_unknown_policy_lists_options() -> None:
 
     with pytest.raises(ConfigError, match="rt1_x"):
         policy_config("rt2", REPO / "conf")
+
+
+LEROBOT_MODELS = {"smolvla_libero": "smolvla", "pi0_libero": "pi0", "pi05_libero": "pi05"}
+
+
+def _lerobot_init_params() -> set[str]:
+    source = (REPO / "ladev_lib/policies/adapters/lerobot_policy.py").read_text()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ClassDef) and node.name == "LeRobotPolicy":
+            init = next(f for f in node.body if isinstance(f, ast.FunctionDef) and f.name == "__init__")
+            return {a.arg for a in init.args.args + init.args.kwonlyargs} - {"self"}
+    raise AssertionError("LeRobotPolicy not found")
+
+
+@pytest.mark.parametrize("name", sorted(LEROBOT_MODELS))
+def test_lerobot_model_config(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    from ladev_lib.policies.adapters.lerobot_maps import (
+        ACTION_LAYOUTS,
+        GRIPPER_CONVENTIONS,
+        LEROBOT_EMBODIMENTS,
+        STATE_LAYOUTS,
+    )
+
+    monkeypatch.setenv("LADEV_CHECKPOINTS", "/ckpts")
+    registry_name, kwargs = policy_config(name, REPO / "conf")
+    assert registry_name == "lerobot" and kwargs["policy_type"] == LEROBOT_MODELS[name]
+    assert kwargs["checkpoint"] == f"/ckpts/{name}"
+    assert set(kwargs) <= _lerobot_init_params(), set(kwargs) - _lerobot_init_params()
+    assert kwargs["state_layout"] in STATE_LAYOUTS and kwargs["action_layout"] in ACTION_LAYOUTS
+    assert kwargs["gripper_convention"] in GRIPPER_CONVENTIONS
+    # LIBERO's embodiment: LADEV's Panda with its end-effector delta controller at 20 Hz.
+    emb = embodiment(kwargs["robot"], kwargs["embodiments"], table=LEROBOT_EMBODIMENTS)
+    assert emb.robot == "panda" and emb.control_mode == "pd_ee_delta_pose" and emb.control_freq_hz == 20
+    assert emb.image_size == (256, 256) and emb.episode_steps["pick_up"] == 120
+
+
+def test_lerobot_missing_stack_names_the_extra() -> None:
+    if importlib.util.find_spec("lerobot") is not None:
+        pytest.skip("lerobot is installed in this environment")
+    with pytest.raises(MissingExtraError, match=r"ladev\[lerobot\]"):
+        make_policy("lerobot", checkpoint="/nonexistent")

@@ -15,6 +15,15 @@ def test_the_simulator_offers_each_adapter_control_mode(robot):
     assert EMBODIMENTS[robot].control_mode in get_robot(robot).control_modes
 
 
+def test_the_lerobot_panda_embodiment_matches_the_simulator():
+    from ladev_lib.policies.adapters.lerobot_maps import PANDA_EMBODIMENT
+
+    panda = get_robot("panda")
+    assert PANDA_EMBODIMENT.control_mode in panda.control_modes
+    assert PANDA_EMBODIMENT.control_freq_hz == panda.control_freq_hz
+    assert dict(PANDA_EMBODIMENT.episode_steps) == dict(panda.max_episode_steps)
+
+
 @pytest.mark.sim
 @pytest.mark.assets
 @pytest.mark.parametrize("robot", sorted(EMBODIMENTS))

@@ -94,20 +94,24 @@ OVERRIDABLE = ("control_mode", "camera", "image_size", "control_freq_hz", "episo
 
 
 def embodiment(
-    robot: str, overrides: Mapping[str, Mapping[str, Any]] | None = None
+    robot: str,
+    overrides: Mapping[str, Mapping[str, Any]] | None = None,
+    table: Mapping[str, Embodiment] | None = None,
 ) -> Embodiment:
     """SimplerEnv's settings for ``robot``, with ``overrides[robot]`` applied.
 
     ``overrides`` is the ``embodiments`` entry of a policy config: per robot,
     any of control_mode, camera, image_size, control_freq_hz, episode_steps
     (task -> steps). Settings for other robots are ignored, so one config can
-    name both robots and be switched with ``robot=...``.
+    name both robots and be switched with ``robot=...``. ``table``: the robots
+    an adapter supports (default :data:`EMBODIMENTS`).
     """
+    known = EMBODIMENTS if table is None else table
     try:
-        base = EMBODIMENTS[robot]
+        base = known[robot]
     except KeyError:
         raise ConfigError(
-            f"VLA adapters support robots {sorted(EMBODIMENTS)}, not {robot!r}"
+            f"VLA adapters support robots {sorted(known)}, not {robot!r}"
         ) from None
     changes = dict((overrides or {}).get(robot) or {})
     unknown = sorted(set(changes) - set(OVERRIDABLE))
