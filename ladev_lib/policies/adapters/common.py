@@ -26,6 +26,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import PolicyInfo
 
@@ -143,7 +144,7 @@ def policy_info(name: str, emb: Embodiment) -> PolicyInfo:
     )
 
 
-def require_image(image: np.ndarray | None, who: str) -> np.ndarray:
+def require_image(image: Array | None, who: str) -> Array:
     """The observation image as (H, W, 3) uint8, or an error naming what is wrong."""
     if image is None:
         raise ValueError(f"{who} needs an RGB image in the observation (got None)")
@@ -156,7 +157,7 @@ def require_image(image: np.ndarray | None, who: str) -> np.ndarray:
 # --------------------------------------------------------------------------- rotations
 
 
-def euler_to_axis_angle(roll: float, pitch: float, yaw: float) -> np.ndarray:
+def euler_to_axis_angle(roll: float, pitch: float, yaw: float) -> Array:
     """Axis-angle vector of the rotation R = Rz(yaw) @ Ry(pitch) @ Rx(roll).
 
     That is the static-axes "sxyz" convention (transforms3d's ``euler2axangle``
@@ -183,21 +184,21 @@ def euler_to_axis_angle(roll: float, pitch: float, yaw: float) -> np.ndarray:
 
 
 def rescale_with_bounds(
-    x: np.ndarray, low: float, high: float, out_low: float, out_high: float
-) -> np.ndarray:
+    x: Array, low: float, high: float, out_low: float, out_high: float
+) -> Array:
     """Map [low, high] linearly onto [out_low, out_high] and clip (RT-1-X on Bridge)."""
     y = (np.asarray(x, dtype=np.float64) - low) / (high - low) * (out_high - out_low) + out_low
     return np.clip(y, out_low, out_high)
 
 
-def _mask(stats: Mapping[str, Sequence[float] | np.ndarray], dim: int) -> np.ndarray:
+def _mask(stats: Mapping[str, Sequence[float] | Array], dim: int) -> Array:
     raw = stats.get("mask")
     return np.ones(dim, dtype=bool) if raw is None else np.asarray(raw, dtype=bool)[:dim]
 
 
 def unnormalize_gaussian(
-    action: np.ndarray, stats: Mapping[str, Sequence[float] | np.ndarray], use_mask: bool = True
-) -> np.ndarray:
+    action: Array, stats: Mapping[str, Sequence[float] | Array], use_mask: bool = True
+) -> Array:
     """``action * std + mean`` (Octo), where ``stats["mask"]`` is true if ``use_mask``.
 
     Octo's own ``sample_actions`` honours the mask (the gripper is not
@@ -212,8 +213,8 @@ def unnormalize_gaussian(
 
 
 def unnormalize_bounds(
-    action: np.ndarray, stats: Mapping[str, Sequence[float] | np.ndarray]
-) -> np.ndarray:
+    action: Array, stats: Mapping[str, Sequence[float] | Array]
+) -> Array:
     """Map [-1, 1] onto [q01, q99] where the mask is true (OpenVLA's BOUNDS_Q99)."""
     a = np.asarray(action, dtype=np.float64)
     d = a.shape[-1]
@@ -237,7 +238,7 @@ class ActionEnsembler:
 
     horizon: int
     temperature: float = 0.0
-    _history: deque[np.ndarray] = field(init=False, repr=False)
+    _history: deque[Array] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.horizon < 1:
@@ -247,7 +248,7 @@ class ActionEnsembler:
     def reset(self) -> None:
         self._history.clear()
 
-    def __call__(self, chunk: np.ndarray) -> np.ndarray:
+    def __call__(self, chunk: Array) -> Array:
         chunk = np.asarray(chunk, dtype=np.float64)
         if chunk.ndim != 2 or chunk.shape[0] < self.horizon:
             raise ValueError(
@@ -259,7 +260,7 @@ class ActionEnsembler:
         preds = np.stack([c[n - 1 - i] for i, c in enumerate(self._history)])
         weights = np.exp(-self.temperature * np.arange(n))
         weights /= weights.sum()
-        result: np.ndarray = (weights[:, None] * preds).sum(axis=0)
+        result: Array = (weights[:, None] * preds).sum(axis=0)
         return result
 
 
@@ -315,8 +316,8 @@ def binarize_open_gripper(open_amount: float, threshold: float = 0.5) -> float:
 
 
 def assemble_action(
-    world_vector: np.ndarray, rot_axangle: np.ndarray, gripper: float, scale: float = 1.0
-) -> np.ndarray:
+    world_vector: Array, rot_axangle: Array, gripper: float, scale: float = 1.0
+) -> Array:
     """The controller's 7-vector: translation and rotation scaled, gripper as is."""
     out = np.empty(ACTION_DIM, dtype=np.float64)
     out[:3] = np.asarray(world_vector, dtype=np.float64).reshape(3) * scale
@@ -332,8 +333,8 @@ RT1_SMALL_GRIPPER = 1e-2
 
 
 def postprocess_rt1(
-    raw: Mapping[str, np.ndarray], emb: Embodiment, action_scale: float = 1.0
-) -> np.ndarray:
+    raw: Mapping[str, Array], emb: Embodiment, action_scale: float = 1.0
+) -> Array:
     """RT-1's action dict -> the controller's 7-vector (SimplerEnv's ``rt1_model.py``).
 
     Google robot: the rotation delta is an axis-angle vector already (Fractal)
@@ -368,7 +369,7 @@ class EulerOpenGripperPostprocessor:
     def reset(self) -> None:
         self.sticky.reset()
 
-    def __call__(self, raw: np.ndarray) -> np.ndarray:
+    def __call__(self, raw: Array) -> Array:
         raw = np.asarray(raw, dtype=np.float64).reshape(-1)
         if raw.shape[0] < ACTION_DIM:
             raise ValueError(f"expected a 7-dim raw action, got shape {raw.shape}")

@@ -27,6 +27,7 @@ from typing import Literal
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.adapters.common import (
     EMBODIMENTS,
@@ -75,7 +76,7 @@ def _choice(value: str, options: tuple[str, ...], what: str) -> str:
 # --------------------------------------------------------------------------- state
 
 
-def quat_to_euler(wxyz: np.ndarray) -> np.ndarray:
+def quat_to_euler(wxyz: Array) -> Array:
     """Roll-pitch-yaw of a unit quaternion (w, x, y, z), with R = Rz(yaw) Ry(pitch) Rx(roll).
 
     The static-axes "sxyz" convention of :func:`.common.euler_to_axis_angle`
@@ -92,7 +93,7 @@ def quat_to_euler(wxyz: np.ndarray) -> np.ndarray:
     return np.array([roll, pitch, yaw])
 
 
-def quat_to_axis_angle(wxyz: np.ndarray) -> np.ndarray:
+def quat_to_axis_angle(wxyz: Array) -> Array:
     """Axis-angle vector (axis * angle, angle in [0, pi]) of a quaternion (w, x, y, z)."""
     q = np.asarray(wxyz, dtype=np.float64).reshape(4)
     q = q / np.linalg.norm(q)
@@ -102,11 +103,11 @@ def quat_to_axis_angle(wxyz: np.ndarray) -> np.ndarray:
     if sin_half < 1e-12:
         return np.zeros(3)
     angle = 2.0 * math.atan2(sin_half, float(q[0]))
-    result: np.ndarray = q[1:] / sin_half * angle
+    result: Array = q[1:] / sin_half * angle
     return result
 
 
-def state_vector(proprio: np.ndarray | None, layout: str, dim: int, feature: str) -> np.ndarray:
+def state_vector(proprio: Array | None, layout: str, dim: int, feature: str) -> Array:
     """The checkpoint's ``feature`` (shape (dim,)) from LADEV's proprio, in ``layout``.
 
     proprio (qpos of n joints, then the TCP pose xyz + wxyz), tcp_pose (the last
@@ -147,7 +148,7 @@ def state_vector(proprio: np.ndarray | None, layout: str, dim: int, feature: str
 # --------------------------------------------------------------------------- image
 
 
-def fit_image(image: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+def fit_image(image: Array, shape: tuple[int, ...]) -> Array:
     """The (H, W, 3) uint8 camera image at the (3, H, W) size a visual feature declares."""
     from PIL import Image
 
@@ -207,7 +208,7 @@ class ActionMapper:
     def reset(self) -> None:
         self.sticky.reset()
 
-    def __call__(self, raw: np.ndarray) -> np.ndarray:
+    def __call__(self, raw: Array) -> Array:
         a = np.asarray(raw, dtype=np.float64).reshape(-1)
         if self.layout == "joint_pos":
             return a.copy()

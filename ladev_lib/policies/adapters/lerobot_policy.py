@@ -45,6 +45,7 @@ from lerobot.envs.utils import preprocess_observation  # noqa: E402
 from lerobot.policies.factory import get_policy_class, make_pre_post_processors  # noqa: E402
 from lerobot.utils.constants import OBS_IMAGE, OBS_IMAGES, OBS_STATE  # noqa: E402
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.adapters.common import embodiment, policy_info, require_image
 from ladev_lib.policies.adapters.lerobot_maps import (
@@ -275,7 +276,7 @@ class LeRobotPolicy(Policy):
         batch["task"] = [self.task(self._instruction)]
         return batch
 
-    def predict_raw(self, obs: Observation) -> np.ndarray:
+    def predict_raw(self, obs: Observation) -> Array:
         """The checkpoint's unnormalised action for this step (from its action queue)."""
         batch = self.preprocessor(self.batch(obs))
         with torch.inference_mode():

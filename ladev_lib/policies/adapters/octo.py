@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError, MissingExtraError
 from ladev_lib.policies.adapters.common import (
     ActionEnsembler,
@@ -127,7 +128,7 @@ def load_octo_model(checkpoint: str, text_encoder: str | None, workdir: str) -> 
     return OctoModel.load_pretrained(path)
 
 
-def resize_lanczos(image: np.ndarray, size: int) -> np.ndarray:
+def resize_lanczos(image: Array, size: int) -> Array:
     """Square Lanczos resize as SimplerEnv does for Octo (TensorFlow's, when available)."""
     try:
         import tensorflow as tf
@@ -196,7 +197,7 @@ class OctoPolicy(Policy):
         self.use_action_mask = use_action_mask
         self.ensembler = ActionEnsembler(action_horizon, ensemble_temperature) if ensemble else None
         self.post = EulerOpenGripperPostprocessor(self.emb, action_scale)
-        self._history: deque[np.ndarray] = deque(maxlen=window)
+        self._history: deque[Array] = deque(maxlen=window)
         self._task: Any = None
         self.last_raw_action = np.zeros(7)
         self._rng: Any = None

@@ -34,6 +34,7 @@ import numpy as np
 import torch  # noqa: E402  (after the pure imports on purpose: the heavy one last)
 import transformers  # noqa: E402
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.adapters.common import (
     EulerOpenGripperPostprocessor,
@@ -54,7 +55,7 @@ def _vision2seq_class() -> Any:
     return cls if cls is not None else transformers.AutoModelForImageTextToText
 
 
-def resize_area(image: np.ndarray, size: tuple[int, int]) -> np.ndarray:
+def resize_area(image: Array, size: tuple[int, int]) -> Array:
     """Area-interpolated resize to (width, height), as SimplerEnv does for OpenVLA."""
     try:
         import cv2
@@ -127,7 +128,7 @@ class OpenVLAPolicy(Policy):
         self._instruction = instruction
         self.post.reset()
 
-    def predict_raw(self, image: np.ndarray) -> np.ndarray:
+    def predict_raw(self, image: Array) -> Array:
         """The model's unnormalised 7-vector [xyz, roll-pitch-yaw, openness] for one image."""
         from PIL import Image
 

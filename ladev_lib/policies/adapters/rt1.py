@@ -40,6 +40,7 @@ from tf_agents.policies import py_tf_eager_policy
 from tf_agents.specs import tensor_spec
 from tf_agents.trajectories import time_step as ts
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError, MissingExtraError
 from ladev_lib.policies.adapters.common import (
     embodiment,
@@ -113,7 +114,7 @@ class RT1Policy(Policy):
         self._policy_state: Any = None
         self._embedding: Any = None
         self._instruction: str | None = None
-        self.last_raw_action: dict[str, np.ndarray] = {}
+        self.last_raw_action: dict[str, Array] = {}
         self._new_episode_state()
         # Trace the graph once now rather than inside the first episode step.
         self._run(self._observation)
@@ -133,7 +134,7 @@ class RT1Policy(Policy):
         with self._on_device():
             return self.tfa_policy.action(time_step, self._policy_state)
 
-    def preprocess(self, image: np.ndarray) -> np.ndarray:
+    def preprocess(self, image: Array) -> Array:
         """The camera image as the model sees it: 320x256 (default), resized with padding."""
         resized = tf.image.resize_with_pad(
             image, target_height=self.image_height, target_width=self.image_width
@@ -159,6 +160,6 @@ class RT1Policy(Policy):
         terminate = bool(raw["terminate_episode"][0] > 0)  # one-hot, index 0 = stop
         return PolicyStep(action=self.postprocess(raw), terminate=terminate)
 
-    def postprocess(self, raw: dict[str, np.ndarray]) -> np.ndarray:
+    def postprocess(self, raw: dict[str, Array]) -> Array:
         """RT-1's action dict -> the controller's 7-vector, per embodiment."""
         return postprocess_rt1(raw, self.emb, self.action_scale)
