@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ladev_lib.rollout import identity
+from ladev_lib import fingerprint as fingerprint_module
 from ladev_lib.rollout.identity import code_fingerprint, episode_id, module_closure
 from ladev_lib.scenes.sampling import sample_scene
 
@@ -81,13 +81,14 @@ def test_closure_follows_imports_not_the_whole_package():
 
 def _copy_package(tmp_path: Path) -> Path:
     root = tmp_path / "ladev_lib"
-    shutil.copytree(identity.PACKAGE_ROOT, root, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(fingerprint_module.PACKAGE_ROOT, root, ignore=shutil.ignore_patterns("__pycache__"))
     return root
 
 
 def test_fingerprint_changes_with_the_code_an_outcome_depends_on(tmp_path, monkeypatch):
     root = _copy_package(tmp_path)
-    monkeypatch.setattr(identity, "PACKAGE_ROOT", root)
+    monkeypatch.setattr(fingerprint_module, "PACKAGE_ROOT", root)
+    monkeypatch.setattr(fingerprint_module, "REPO_ROOT", tmp_path)
 
     def fingerprint() -> str:
         code_fingerprint.cache_clear()
