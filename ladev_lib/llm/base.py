@@ -15,6 +15,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol
 
+from pydantic import BaseModel, ConfigDict, Field
+
 from ladev_lib.registry import Registry
 
 Role = Literal["system", "user", "assistant"]
@@ -61,6 +63,28 @@ class LLMResponse:
     cached: bool = False
     latency_s: float = 0.0
     usage: Mapping[str, int] = field(default_factory=dict)
+
+
+LLM_CACHE_VERSION: Literal[1] = 1
+
+
+class LLMCacheRecord(BaseModel):
+    """One cached answer, as stored under its call key (``LLMClient.call_key``).
+
+    Versioned like every record LADEV persists (a ``schema_version`` field): a
+    record of another version, or an untyped entry of an older LADEV, is not
+    served; the call is made again and the record rewritten.
+    """
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    schema_version: Literal[1] = LLM_CACHE_VERSION
+    job: str
+    text: str
+    backend: str
+    model: str
+    usage: dict[str, int] = Field(default_factory=dict)
+    latency_s: float = Field(0.0, description="Seconds the original call took.")
 
 
 class LLMBackend(Protocol):

@@ -20,7 +20,7 @@ from typing import Any, Generic, TypeVar
 
 from pydantic import BaseModel, TypeAdapter, ValidationError
 
-from ladev_lib.llm.base import ChatMessage, LLMBackend, LLMRequest, LLMResponse
+from ladev_lib.llm.base import ChatMessage, LLMBackend, LLMCacheRecord, LLMRequest, LLMResponse
 from ladev_lib.store import ContentStore, content_key
 
 T = TypeVar("T")
@@ -93,37 +93,46 @@ class LLMClient:
             length=32,
         )
 
+    def _cached(self, key: str) -> LLMCacheRecord | None:
+        """The cached record under ``key``; None when absent or of another schema version."""
+        assert self.cache is not None
+        raw = self.cache.get(key)
+        if raw is None:
+            return None
+        try:
+            return LLMCacheRecord.model_validate(raw)
+        except ValidationError:
+            return None  # an older or foreign entry: ask again and overwrite it
+
     def complete(self, request: LLMRequest) -> LLMResponse:
         key = self.call_key(request)
         if self.cache is not None:
-            hit = self.cache.get(key)
+            hit = self._cached(key)
             if hit is not None:
                 self.cache_hits += 1
                 return LLMResponse(
-                    text=hit["text"],
-                    backend=hit["backend"],
-                    model=hit["model"],
+                    text=hit.text,
+                    backend=hit.backend,
+                    model=hit.model,
                     call_id=key,
                     cached=True,
                     latency_s=0.0,
-                    usage=hit.get("usage", {}),
+                    usage=hit.usage,
                 )
         start = time.perf_counter()
         response = self.backend.complete(request)
         self.calls += 1
         latency = time.perf_counter() - start
         if self.cache is not None:
-            self.cache.put(
-                key,
-                {
-                    "text": response.text,
-                    "backend": response.backend,
-                    "model": response.model,
-                    "usage": dict(response.usage),
-                    "job": request.job,
-                    "latency_s": latency,
-                },
+            record = LLMCacheRecord(
+                job=request.job,
+                text=response.text,
+                backend=response.backend,
+                model=response.model,
+                usage=dict(response.usage),
+                latency_s=latency,
             )
+            self.cache.put(key, record.model_dump(mode="json"))
         return LLMResponse(
             text=response.text,
             backend=response.backend,
