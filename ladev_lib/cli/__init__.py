@@ -8,6 +8,7 @@ Each subcommand lives in its own module here and exposes ``command``.
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 from typing import Any
 
@@ -53,4 +54,16 @@ def cli() -> None:
 
 
 def main(argv: list[str] | None = None) -> Any:
-    return cli.main(args=argv if argv is not None else sys.argv[1:], prog_name="ladev")
+    """The ``ladev`` entry point: a LADEV error (bad config, missing input) prints its message, not a traceback.
+
+    ``LADEV_DEBUG=1`` shows the traceback as well.
+    """
+    from ladev_lib.errors import LadevError
+
+    try:
+        return cli.main(args=argv if argv is not None else sys.argv[1:], prog_name="ladev")
+    except LadevError as exc:
+        if os.environ.get("LADEV_DEBUG"):
+            raise
+        click.secho(f"error: {exc}", fg="red", err=True)
+        sys.exit(2)

@@ -11,9 +11,11 @@ install, so listing names never imports TensorFlow, JAX or a 7B model.
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
 from typing import Any
 
+from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import (
     EpisodeContext,
     Observation,
@@ -40,9 +42,26 @@ POLICIES.add_lazy("openvla", "ladev_lib.policies.adapters.openvla:OpenVLAPolicy"
 POLICIES.add_lazy("lerobot", "ladev_lib.policies.adapters.lerobot_policy:LeRobotPolicy", extra="lerobot")
 
 
-def make_policy(name: str, **config: Any) -> Policy:
-    """Construct the policy registered as ``name`` with its config."""
-    return POLICIES.get(name)(**config)
+def make_policy(name: str, /, **config: Any) -> Policy:
+    """Construct the policy registered as ``name`` with its config.
+
+    A config key the policy does not take is a ``ConfigError`` naming the keys it does.
+    """
+    factory = POLICIES.get(name)
+    try:
+        signature = inspect.signature(factory)
+    except (TypeError, ValueError):  # a builtin or C factory: let it check its own arguments
+        return factory(**config)
+    params = signature.parameters.values()
+    if not any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params):
+        known = [p.name for p in params if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+        unknown = sorted(set(config) - set(known))
+        if unknown:
+            raise ConfigError(
+                f"policy {name!r} does not take {', '.join(map(repr, unknown))}; "
+                f"its options are: {', '.join(known) or 'none'}"
+            )
+    return factory(**config)
 
 
 __all__ = [

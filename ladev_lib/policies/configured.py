@@ -52,8 +52,13 @@ def policy_config(
             f"unknown policy {name!r}: not in conf/policy ({', '.join(options) or 'none'}) "
             f"nor registered ({', '.join(POLICIES.names())})"
         )
-    kwargs.update(overrides or {})
-    return registry_name, kwargs
+    extra = dict(overrides or {})
+    # ``name`` is the registry entry in conf/policy, so an override of it picks another entry.
+    chosen = extra.pop("name", registry_name)
+    if not isinstance(chosen, str) or chosen not in POLICIES:
+        raise ConfigError(f"name={chosen!r}: not a registered policy ({', '.join(POLICIES.names())})")
+    kwargs.update(extra)
+    return chosen, kwargs
 
 
 def make_configured_policy(
