@@ -37,8 +37,8 @@ def main() -> None:
 
     from ladev_lib.assets import asset_dir
     from ladev_lib.catalog import load_catalog
+    from ladev_lib.rollout.solvability import check_scenes
     from ladev_lib.scenes.sampling import sample_scene
-    from ladev_lib.sim.solvability import check_scenes
 
     catalog = load_catalog()
     kinds = ["standin", "mesh"] if args.objects == "both" else [args.objects]

@@ -11,7 +11,7 @@ per step, each phase planned from the state it starts in. It ends the episode
 (``terminate=True``) when the skill is done or has given up; ``outcome`` then
 says which, and why.
 
-This is LADEV's solvability check for generated scenes (``ladev_lib.sim.solvability``).
+This is LADEV's solvability check for generated scenes (``ladev_lib.rollout.solvability``).
 """
 
 from __future__ import annotations

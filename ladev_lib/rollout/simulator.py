@@ -28,6 +28,8 @@ class SimSetup:
     control_mode: str
     image_size: tuple[int, int] | None
     """(width, height) of the policy camera; None: state only (nothing is rendered)."""
+    prefer_meshes: bool = True
+    """False: build stand-ins even where ``MS_ASSET_DIR`` has meshes (e.g. asset-independent checks)."""
 
 
 class EpisodeSim(Protocol):
@@ -98,6 +100,7 @@ class ManiSkillSim:
                 control_mode=self.setup.control_mode,
                 robot=self.setup.robot,
                 image_size=self.setup.image_size,
+                **({} if self.setup.prefer_meshes else {"prefer_meshes": False}),
             )
         self._env.reset(seed=seed, options={"spec": spec.model_dump(mode="json")})
         self._spec = spec
