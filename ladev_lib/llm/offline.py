@@ -7,19 +7,19 @@ reads ``request.inputs`` and returns the answer text. No network, no keys,
 the same answer for the same request.
 
 Its ``settings()`` carry a fingerprint of the rules (a version plus a hash of
-the handler modules' source), so changing a rule invalidates the cached
-answers it produced, and only those of the offline backend.
+the code and data the handlers import, by ``ladev_lib.fingerprint``), so
+changing a rule, the lexicon or the catalog invalidates the cached answers it
+produced, and only those of the offline backend.
 """
 
 from __future__ import annotations
 
 import functools
-import hashlib
 import importlib
 import inspect
-import sys
 from typing import TYPE_CHECKING, Any
 
+from ladev_lib.fingerprint import fingerprint
 from ladev_lib.llm.base import OFFLINE_JOBS, LLMRequest, LLMResponse
 
 if TYPE_CHECKING:
@@ -31,9 +31,8 @@ HANDLER_MODULES: tuple[str, ...] = (
     "ladev_lib.llm.offline_scenes",  # describe_scenes, compile_scene
     "ladev_lib.language.offline_jobs",  # paraphrase, parse_instruction (the language work)
 )
-"""Modules that register offline jobs when imported. Each may list further
-modules its rules live in as ``RULE_MODULES``; all of them are fingerprinted.
-A listed module that is not part of this install is skipped (its jobs are then
+"""Modules that register offline jobs when imported; they and everything they
+import are fingerprinted. A listed module that is not part of this install is skipped (its jobs are then
 unknown, and asking for one lists the known jobs)."""
 
 
@@ -53,20 +52,18 @@ def _import_handlers() -> list[str]:
 
 @functools.lru_cache(maxsize=1)
 def rules_fingerprint() -> str:
-    """Hash of the source of every module the offline rules live in."""
+    """Hash of the code and data the offline rules depend on.
+
+    The import closure of every handler module and job (``ladev_lib.fingerprint``, the
+    mechanism episode ids use): the lexicon, the catalog and every module the rules
+    import count, so editing any of them misses the cache.
+    """
     names: set[str] = set(_import_handlers())
     for job in OFFLINE_JOBS.names():
         module = inspect.getmodule(OFFLINE_JOBS.get(job))
         if module is not None:
             names.add(module.__name__)
-    for name in list(names):
-        names.update(getattr(sys.modules[name], "RULE_MODULES", ()))
-    digest = hashlib.sha256(RULES_VERSION.encode())
-    for name in sorted(names):
-        module = importlib.import_module(name)
-        digest.update(name.encode())
-        digest.update(inspect.getsource(module).encode())
-    return digest.hexdigest()[:16]
+    return fingerprint(sorted(names), {"rules_version": RULES_VERSION})
 
 
 class OfflineBackend:

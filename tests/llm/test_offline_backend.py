@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import inspect
 import json
+import shutil
 
 import pytest
 
+from ladev_lib import fingerprint as fingerprint_module
 from ladev_lib.errors import UnknownNameError
 from ladev_lib.llm import OFFLINE_JOBS, ChatMessage, LLMRequest
 from ladev_lib.llm import offline as offline_module
@@ -77,24 +78,43 @@ def test_a_cache_hit_makes_zero_calls(tmp_path):
     assert fresh.calls == 0
 
 
-def test_changing_the_rules_changes_the_fingerprint_and_misses_the_cache(tmp_path, monkeypatch):
-    client = LLMClient(OfflineBackend(), cache=ContentStore(tmp_path))
+def test_changing_the_rules_the_lexicon_or_the_catalog_misses_the_cache(tmp_path, monkeypatch):
+    """The fingerprint covers everything the handlers import, code and data alike."""
+    client = LLMClient(OfflineBackend(), cache=ContentStore(tmp_path / "cache"))
     key_before = client.call_key(compile_request("two objects"))
-    before = rules_fingerprint()
-    real_getsource = inspect.getsource
+    root = tmp_path / "ladev_lib"
+    shutil.copytree(fingerprint_module.PACKAGE_ROOT, root, ignore=shutil.ignore_patterns("__pycache__"))
+    monkeypatch.setattr(fingerprint_module, "PACKAGE_ROOT", root)
+    monkeypatch.setattr(fingerprint_module, "REPO_ROOT", tmp_path)
 
-    def edited(module):
-        text = real_getsource(module)
-        return text + "\n# a changed rule\n" if module.__name__ == "ladev_lib.llm.grammar.environment" else text
-
-    rules_fingerprint.cache_clear()
-    monkeypatch.setattr(offline_module.inspect, "getsource", edited)
-    try:
-        after = rules_fingerprint()
-        key_after = client.call_key(compile_request("two objects"))
-    finally:
+    def current() -> str:
+        fingerprint_module.clear_cache()
         rules_fingerprint.cache_clear()
-    assert after != before and key_after != key_before
+        return rules_fingerprint()
+
+    before = current()
+    closure = {p.relative_to(root).as_posix() for p in fingerprint_module.closure_files(
+        [*offline_module.HANDLER_MODULES])}
+    lexicon = next(p for p in sorted(closure) if p.startswith("language/") and "lexicon" in p)
+    rules = next(p for p in sorted(closure) if p.startswith("language/") and p != lexicon)
+    try:
+        for rel in ("catalog/objects.yaml", lexicon, rules):
+            path = root / rel
+            original = path.read_text()
+            path.write_text(original + "\n# edit\n")
+            assert current() != before, rel
+            path.write_text(original)
+            assert current() == before, rel
+        # A module the rules never import leaves the cache valid.
+        assert "report/build.py" not in closure
+        (root / "report/build.py").write_text((root / "report/build.py").read_text() + "\n# edit\n")
+        assert current() == before
+        (root / "catalog/objects.yaml").write_text((root / "catalog/objects.yaml").read_text() + "\n# edit\n")
+        assert current() != before
+        assert client.call_key(compile_request("two objects")) != key_before
+    finally:
+        fingerprint_module.clear_cache()
+        rules_fingerprint.cache_clear()
 
 
 def test_describe_scenes_answers_every_item(catalog):
