@@ -21,6 +21,7 @@ from ladev_lib.arrays import Array
 
 if TYPE_CHECKING:
     from ladev_lib.scenes import SceneSpec
+    from ladev_lib.sim.view import SceneView
 
 
 @dataclass(frozen=True)
@@ -57,8 +58,9 @@ class PrivilegedState:
     spec: SceneSpec
     object_poses: dict[str, Array]
     """Instance name -> world pose [x, y, z, qw, qx, qy, qz]."""
-    env: Any = None
-    """The unwrapped ManiSkill env, for planners that need the robot model (the oracle)."""
+    scene: SceneView | None = None
+    """A read-only view of the simulated scene (object geometry, the robot model and state),
+    for planners such as the oracle; never the env itself."""
 
 
 @dataclass

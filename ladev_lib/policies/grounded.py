@@ -158,8 +158,8 @@ class GroundedPolicy(Policy):
 
     def step(self, obs: Observation) -> PolicyStep:
         priv = obs.privileged
-        if priv is None or priv.env is None:
-            raise ValueError("grounded is privileged: it needs the object list and the env")
+        if priv is None or priv.scene is None:
+            raise ValueError("grounded is privileged: it needs the object list and the scene's view")
         if self._understood is None:
             objects = scene_objects(priv.spec, self.catalog)
             self.choice = self.retriever.choose(self.instruction, afforded_tasks(objects))

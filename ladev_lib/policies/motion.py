@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 import sapien
@@ -20,6 +20,9 @@ import sapien
 from ladev_lib.arrays import Array
 from ladev_lib.policies.geometry import ObjectGeometry
 from ladev_lib.policies.planner import BRISK_PATH_STEPS, ArmPath, ArmPlanner
+
+if TYPE_CHECKING:
+    from ladev_lib.sim.view import RobotView, SceneView
 
 RETREAT_HEIGHT_M = 0.08
 MAX_SETTLE_STEPS = 20
@@ -61,11 +64,8 @@ class _GripperMap:
     upper: float
 
     @classmethod
-    def of(cls, agent: Any) -> _GripperMap:
-        ctrl = agent.controller.controllers.get("gripper")
-        cfg = getattr(ctrl, "config", None)
-        lower = float(np.atleast_1d(getattr(cfg, "lower", -0.01))[0])
-        upper = float(np.atleast_1d(getattr(cfg, "upper", 0.04))[0])
+    def of(cls, robot: RobotView) -> _GripperMap:
+        lower, upper = robot.gripper_limits()
         return cls(lower, upper)
 
     @property
@@ -83,14 +83,16 @@ class _GripperMap:
 
 
 class ArmMotion:
-    """Moves one ManiSkill Panda (``agent``) in ``env``, recording what it does in ``outcome``."""
+    """Moves the Panda of the scene ``view``, recording what it does in ``outcome``.
 
-    def __init__(self, env: Any) -> None:
-        self.env = env
-        self.agent = env.agent
+    It reads the scene through its read-only view; the caller steps the simulator.
+    """
+
+    def __init__(self, view: SceneView) -> None:
+        self.view = view
         self.outcome = SkillOutcome()
-        self.planner = ArmPlanner(self.agent, env.control_timestep)
-        self._gripper = _GripperMap.of(self.agent)
+        self.planner = ArmPlanner(view.robot, view.control_timestep)
+        self._gripper = _GripperMap.of(view.robot)
         self._arm_target = self._qpos()[: self.planner.n_arm]
         self._gripper_action = self._gripper.action(self._gripper.max_opening)
 
@@ -100,16 +102,16 @@ class ArmMotion:
 
     # -- state ---------------------------------------------------------------
     def _qpos(self) -> Array:
-        return np.asarray(self.agent.robot.get_qpos()[0].cpu().numpy(), dtype=float)
+        return self.view.robot.qpos()
 
     def _qvel(self) -> Array:
-        return np.asarray(self.agent.robot.get_qvel()[0].cpu().numpy(), dtype=float)
+        return self.view.robot.qvel()
 
     def _tcp(self) -> sapien.Pose:
-        return self.agent.tcp.pose.sp
+        return self.view.robot.tcp_pose()
 
     def _geometries(self) -> dict[str, ObjectGeometry]:
-        return {n: ObjectGeometry.of_actor(n, a) for n, a in self.env.objects.items()}
+        return {n: ObjectGeometry.of(self.view, n) for n in self.view.object_names()}
 
     def _note(self, text: str) -> None:
         self.outcome.log.append(f"[{self.outcome.phase}] {text}")

@@ -71,20 +71,20 @@ class OraclePolicy(Policy):
 
     def _start(self, obs: Observation) -> TaskSkill:
         priv = obs.privileged
-        if priv is None or priv.env is None:
+        if priv is None or priv.scene is None:
             raise ValueError(
-                "the oracle needs privileged state with the simulator env "
-                "(Observation.privileged.env); run it through the episode engine"
+                "the oracle needs privileged state with the scene's view "
+                "(Observation.privileged.scene); run it through the episode engine"
             )
-        spec, env = priv.spec, priv.env
+        spec, view = priv.spec, priv.scene
         if spec.robot != "panda":
             raise ValueError(f"the oracle drives the Panda only; this scene is for {spec.robot!r}")
         return TaskSkill(
-            env,
+            view,
             spec.task.type,
             spec.task.source,
             spec.task.target,
-            region=self._region(env),
+            region=self._region(view),
             max_attempts=self.max_attempts,
         )
 

@@ -19,7 +19,7 @@ import os
 import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import mplib
 import numpy as np
@@ -27,6 +27,9 @@ import sapien
 
 from ladev_lib.arrays import Array
 from ladev_lib.policies.geometry import transform_points
+
+if TYPE_CHECKING:
+    from ladev_lib.sim.view import RobotView
 
 OCTREE_RESOLUTION_M = 0.006
 JOINT_VEL_SCALE = 1.3
@@ -79,15 +82,14 @@ def _pose7(pose: sapien.Pose) -> Array:
 class ArmPlanner:
     """Plans TCP motions of a ManiSkill agent among obstacle points."""
 
-    def __init__(self, agent: Any, control_timestep: float, move_group: str = "panda_hand_tcp"):
-        robot = agent.robot
+    def __init__(self, robot: RobotView, control_timestep: float, move_group: str = "panda_hand_tcp"):
         self.time_step = float(control_timestep)
-        link_names = [link.get_name() for link in robot.get_links()]
-        joint_names = [joint.get_name() for joint in robot.get_active_joints()]
+        link_names = robot.link_names()
+        joint_names = robot.active_joint_names()
         with contextlib.redirect_stdout(io.StringIO()):  # mplib prints SRDF notices
             self._mp = mplib.planner.Planner(
-                urdf=agent.urdf_path,
-                srdf=agent.urdf_path.replace(".urdf", ".srdf"),
+                urdf=robot.urdf_path,
+                srdf=robot.urdf_path.replace(".urdf", ".srdf"),
                 user_link_names=link_names,
                 user_joint_names=joint_names,
                 move_group=move_group,
@@ -95,7 +97,7 @@ class ArmPlanner:
         self._mp.set_base_pose(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]))
         self._mp.joint_vel_limits = np.asarray(self._mp.joint_vel_limits) * JOINT_VEL_SCALE
         self._mp.joint_acc_limits = np.asarray(self._mp.joint_acc_limits) * JOINT_ACC_SCALE
-        self._base = robot.pose.sp
+        self._base = robot.base_pose()
         self._base_inv = self._base.inv()
         self.n_arm = len(self._mp.move_group_joint_indices)
         self._has_obstacles = False

@@ -11,9 +11,9 @@ the state the simulator is in when the phase starts, so the plan follows the
 world between phases. It re-grasps when the object slips or lands wrong, up to
 ``max_attempts`` times. The caller steps the simulator between actions.
 
-What it needs from the env (a ManiSkill env, unwrapped): ``agent`` (Panda with
-``robot``, ``tcp``, ``is_grasping``), ``objects`` (name -> Actor) and
-``control_timestep``. It never reads an instruction: the task type and object
+It reads the scene through a read-only :class:`~ladev_lib.sim.view.SceneView`
+(object names and surface points, the robot's joints and hand, whether it
+holds something, the control time step), never the env. It never reads an instruction: the task type and object
 names come from the caller (the oracle reads them from the scene spec; the
 grounded policy from language).
 """
@@ -21,7 +21,7 @@ grounded policy from language).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import sapien
@@ -41,6 +41,9 @@ from ladev_lib.policies.placing import (
     place_on,
 )
 from ladev_lib.policies.planner import ArmPath
+
+if TYPE_CHECKING:
+    from ladev_lib.sim.view import SceneView
 
 TaskType = Literal["pick_up", "move_near", "put_on", "put_in"]
 TASK_TYPES: tuple[str, ...] = ("pick_up", "move_near", "put_on", "put_in")
@@ -80,7 +83,7 @@ class TaskSkill(ArmMotion):
 
     def __init__(
         self,
-        env: Any,
+        view: SceneView,
         task_type: str,
         source: str,
         target: str | None = None,
@@ -92,11 +95,11 @@ class TaskSkill(ArmMotion):
             raise ValueError(f"task_type must be one of {', '.join(TASK_TYPES)}, got {task_type!r}")
         if task_type != "pick_up" and target is None:
             raise ValueError(f"{task_type} needs a target object")
-        objects = env.objects
+        objects = view.object_names()
         for role, name in (("source", source), ("target", target)):
             if name is not None and name not in objects:
                 raise KeyError(f"{role} {name!r} is not in the scene (objects: {', '.join(objects)})")
-        super().__init__(env)
+        super().__init__(view)
         self.task_type = task_type
         self.source = source
         self.target = target
@@ -122,7 +125,7 @@ class TaskSkill(ArmMotion):
         return action
 
     def _holding(self) -> bool:
-        return bool(self.agent.is_grasping(self.env.objects[self.source])[0])
+        return self.view.is_grasping(self.source)
 
     # -- the task ------------------------------------------------------------
     def _run(self) -> Iterator[Array]:
@@ -405,11 +408,14 @@ def plan_task(
 ) -> TaskSkill:
     """The skill that does ``task_type`` with objects ``source`` (and ``target``) in ``env``.
 
-    ``env`` is the unwrapped scene env, made with ``control_mode="pd_joint_pos"``;
-    ``options`` go to :class:`TaskSkill` (``region``, ``max_attempts``). Iterate the
-    result for actions, stepping the env after each; read ``outcome`` at the end.
+    ``env`` is the scene env (made with ``control_mode="pd_joint_pos"``); the skill reads it
+    through its read-only view (:func:`ladev_lib.sim.view.scene_view`). ``options`` go to
+    :class:`TaskSkill` (``region``, ``max_attempts``). Iterate the result for actions,
+    stepping the env after each; read ``outcome`` at the end.
     """
-    return TaskSkill(env, task_type, source, target, **options)
+    from ladev_lib.sim.view import scene_view
+
+    return TaskSkill(scene_view(env), task_type, source, target, **options)
 
 
 def _away_from_hand(points: Array, tcp: Array) -> Array:

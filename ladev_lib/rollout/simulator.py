@@ -132,7 +132,9 @@ class ManiSkillSim:
         priv = None
         if privileged:
             assert self._spec is not None
-            priv = PrivilegedState(spec=self._spec, object_poses=u.object_poses(), env=u)
+            from ladev_lib.sim.view import scene_view
+
+            priv = PrivilegedState(spec=self._spec, object_poses=u.object_poses(), scene=scene_view(u))
         return Observation(
             image=u.policy_image() if image else None,
             proprio=np.concatenate([qpos, tcp_pose]).astype(np.float32),

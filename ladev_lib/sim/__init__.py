@@ -20,7 +20,7 @@
 
 Modules: ``env`` (the environment), ``robots`` (embodiments), ``agents`` (ManiSkill agents
 for the asset-pack robots), ``objects`` (meshes and stand-ins), ``tasks`` (predicates),
-``validity`` (physical-validity verdicts), ``render`` (pictures), ``config`` (SimConfig,
+``validity`` (physical-validity verdicts), ``view`` (the read-only scene view privileged policies get), ``render`` (pictures), ``config`` (SimConfig,
 RobotConfig). Importing this package is cheap; ManiSkill loads when an env is made.
 """
 

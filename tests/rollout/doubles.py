@@ -90,7 +90,7 @@ class ToySim:
         priv = None
         if privileged:
             poses = {o.name: np.array([o.x, o.y, 0.0, 1.0, 0.0, 0.0, 0.0]) for o in self.spec.objects}
-            priv = PrivilegedState(spec=self.spec, object_poses=poses, env=self)
+            priv = PrivilegedState(spec=self.spec, object_poses=poses, scene=self)
         return Observation(image=self.frame() if image else None, proprio=self.pos.copy(), privileged=priv)
 
     def step(self, action: np.ndarray) -> dict[str, bool]:

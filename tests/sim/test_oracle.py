@@ -76,6 +76,8 @@ def test_oracle_solves_seeded_scenes(task: str, oracle_sim: Any) -> None:
 @pytest.mark.sim
 def test_oracle_reads_the_task_from_the_spec_not_the_instruction(oracle_sim: Any) -> None:
     """Run as the episode engine does, with a misleading instruction: the spec's task wins."""
+    from ladev_lib.sim.view import scene_view
+
     spec = scene("put_on", 0)
     oracle_sim.load(spec, spec.seed)
     env = oracle_sim.env
@@ -84,7 +86,7 @@ def test_oracle_reads_the_task_from_the_spec_not_the_instruction(oracle_sim: Any
     policy.reset("pick up the green cube and hold it")
     for step in range(OraclePolicy.info.max_episode_steps or 400):
         out = policy.step(Observation(
-            image=None, privileged=PrivilegedState(u.spec, u.object_poses(), u), step=step))
+            image=None, privileged=PrivilegedState(u.spec, u.object_poses(), scene_view(u)), step=step))
         if out.terminate:
             break
         assert out.action.shape == (8,)
