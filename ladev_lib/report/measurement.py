@@ -105,7 +105,7 @@ def rate_interval(
     per_scene = judged.group_by("scene_id").agg(
         k=pl.col(ok_column).cast(pl.Int64).sum(), n=pl.len()
     ).sort("scene_id")
-    if per_scene.get_column("n").max() == 1:  # type: ignore[operator]
+    if per_scene.get_column("n").max() == 1:
         w = wilson_interval(int(per_scene["k"].sum()), per_scene.height, opts.confidence)
         assert w is not None
         return w[0], w[1], "Wilson"
@@ -134,9 +134,9 @@ def success_definitions(
             rows.append(
                 dict(
                     policy=policy, task=task, n_scenes=sub["scene_id"].n_unique(), n_episodes=n,
-                    trials=int(sub["trial"].max()) + 1 if n else 0,  # type: ignore[operator]
-                    end_pct=100.0 * sub["end"].sum() / n if n else None,
-                    any_pct=100.0 * sub["any"].sum() / n if n else None,
+                    trials=int(sub["trial"].cast(pl.Int64).max() or 0) + 1 if n else 0,  # type: ignore[arg-type]
+                    end_pct=100.0 * int(sub["end"].sum()) / n if n else None,
+                    any_pct=100.0 * int(sub["any"].sum()) / n if n else None,
                     definition=definition,
                     ci_low_pct=None if low is None else 100.0 * low,
                     ci_high_pct=None if high is None else 100.0 * high,
@@ -176,7 +176,7 @@ def trial_agreement(episodes: pl.DataFrame) -> pl.DataFrame:
                     policy=policy, task=task, groups=sub.height,
                     flipping_groups=int(sub["flip"].sum()),
                     scenes=scene_flips.height, flipping_scenes=int(scene_flips["flip"].sum()),
-                    agreement_pct=100.0 * (1 - sub["flip"].sum() / sub.height) if sub.height else None,
+                    agreement_pct=100.0 * (1 - int(sub["flip"].sum()) / sub.height) if sub.height else None,
                 )
             )
     return pl.DataFrame(rows, schema=AGREEMENT_SCHEMA)
@@ -209,8 +209,8 @@ def control_comparison(
     """Per policy and control (and every control pooled, ``control`` "all"): success under the
     real (basic) instruction and under the control on the same scenes and trials, the paired
     difference control − real with its interval (Newcombe's paired interval with one pair per
-    scene; a cluster bootstrap over scenes with more), McNemar's exact p and the minimum
-    detectable difference."""
+    scene; a cluster bootstrap over scenes with more), McNemar's exact p (one pair per scene
+    only) and the minimum detectable difference."""
     pairs = control_pairs(episodes)
     rows: list[dict[str, Any]] = []
     for policy in sorted(pairs.get_column("policy").unique().to_list()):
@@ -235,11 +235,14 @@ def _control_row(
         sub.with_columns(diff=pl.col("control_ok").cast(pl.Int64) - pl.col("real_ok").cast(pl.Int64))
         .group_by("scene_id").agg(diff=pl.col("diff").sum(), n=pl.len()).sort("scene_id")
     )
-    if per_scene.get_column("n").max() == 1:  # type: ignore[operator]
+    p_value: float | None = None
+    if per_scene.get_column("n").max() == 1:
         diff = newcombe_paired(a, control_only, real_only, d, opts.confidence)  # control - real
         assert diff is not None
         low, high, method = diff.low, diff.high, "Newcombe paired"
+        p_value = mcnemar_exact(real_only, control_only)
     else:
+        # McNemar's test would take a scene's trials and controls for independent pairs: no p.
         ci = cluster_bootstrap_mean(
             per_scene["diff"].to_list(), per_scene["n"].to_list(), opts.confidence, opts.samples, opts.seed
         )
@@ -251,7 +254,7 @@ def _control_row(
         policy=policy, control=kind, n_pairs=n, n_scenes=scenes,
         real_pct=100.0 * (a + real_only) / n, control_pct=100.0 * (a + control_only) / n,
         diff_pct=100.0 * (control_only - real_only) / n, diff_low_pct=100.0 * low,
-        diff_high_pct=100.0 * high, interval=method, p_value=mcnemar_exact(real_only, control_only),
+        diff_high_pct=100.0 * high, interval=method, p_value=p_value,
         real_only=real_only, control_only=control_only,
         mdd_pct=None if mdd is None else 100.0 * mdd,
     )
@@ -346,8 +349,9 @@ def measurement_tables(m: Measurement, labels: dict[str, str], confidence: float
         "Control instructions",
         f"{cap} The same scenes and trials under the basic instruction (real) and under a control; "
         f"difference control − real in percentage points with its {conf}% interval, McNemar's exact "
-        "p, and the minimum detectable difference (MDD: 80% power, 5% level, from the number of "
-        "scenes). A policy that follows language drops under the controls.",
+        "p (one pair per scene only; with more, the pairs are not independent and the cluster "
+        "interval stands alone), and the minimum detectable difference (MDD: 80% power, 5% level, "
+        "from the number of scenes). A policy that follows language drops under the controls.",
         ("Model", "Control", "Method", "Pairs", "Scenes", "Real", "Control", "Diff (pp)", "Interval",
          "p", "MDD (pp)"),
         [

@@ -176,7 +176,8 @@ def headline_metrics(
     if measurement is None:
         return metrics
     metrics["success_definition"] = 0 if measurement.definition == "end" else 1
-    metrics["trials_per_scene"] = int(measurement.success["trials"].max() or 1) if not measurement.success.is_empty() else 1
+    trials = [int(t) for t in measurement.success["trials"].to_list()]
+    metrics["trials_per_scene"] = max(trials, default=1)
     for r in measurement.success.iter_rows(named=True):
         suffix = r["policy"] if r["task"] == "*" else f"{r['policy']}/{r['task']}"
         for d in ("end", "any"):

@@ -48,9 +48,10 @@ def _libc() -> ctypes.CDLL | None:
 def _ompl_library() -> ctypes.CDLL | None:
     """OMPL as loaded by mplib, or None (mplib not imported yet, or built differently)."""
     mplib = sys.modules.get("mplib")
-    if mplib is None or not getattr(mplib, "__file__", None):
+    where: str | None = getattr(mplib, "__file__", None) if mplib is not None else None
+    if where is None:
         return None
-    return _load_ompl(str(Path(mplib.__file__).resolve().parent))
+    return _load_ompl(str(Path(where).resolve().parent))
 
 
 @functools.lru_cache(maxsize=4)
