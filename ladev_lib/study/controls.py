@@ -9,8 +9,9 @@ that learnt the scene and not the words) succeeds as often. Three kinds:
 - ``empty``: no instruction at all ("");
 - ``unrelated``: a sentence about something else, drawn per scene;
 - ``other_object``: the scene's task in the standard short form, on another
-  object: a distractor of the scene when it has one, else a catalog object of
-  the scene's set that is not on the table (noted in ``reason``).
+  object: a distractor of the scene when it has one (a graspable one first),
+  else a graspable catalog object of the scene's set that is not on the table
+  (noted in ``reason``).
 
 Which scenes get them is the study's choice (``study.controls``,
 ``study.control_factors``); the rollout runs every control row like the real
@@ -46,16 +47,17 @@ def _rng(seed: int, scene_id: str, kind: str) -> random.Random:
 def _other_object(
     spec: SceneSpec, catalog: Catalog, rng: random.Random
 ) -> tuple[CatalogObject, bool] | None:
-    """Another graspable object than the task's, and whether it is on the table."""
+    """Another object than the task's (a graspable one where there is a choice), and whether
+    it is on the table."""
     roles = {spec.task.source, spec.task.target}
     on_table = {o.id for o in spec.objects}
     role_ids = {o.id for o in spec.objects if o.name in roles}
     present = sorted(
         {o.id for o in spec.objects if o.name not in roles and o.id not in role_ids and o.id in catalog}
     )
-    present = [i for i in present if catalog.get(i).graspable]
-    if present:
-        return catalog.get(rng.choice(present)), True
+    graspable = [i for i in present if catalog.get(i).graspable]
+    if graspable or present:  # one the task could be done with, if the table has one
+        return catalog.get(rng.choice(graspable or present)), True
     sets = {catalog.get(i).set for i in on_table if i in catalog}
     absent = sorted(o.id for o in catalog if o.graspable and o.id not in on_table and (not sets or o.set in sets))
     if not absent:

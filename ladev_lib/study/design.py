@@ -107,11 +107,6 @@ class StudyConfig(BaseModel):
 
     @model_validator(mode="after")
     def _check_levels(self) -> StudyConfig:
-        for key in ("trial_factors", "control_factors"):
-            chosen = getattr(self, key) or []
-            unknown = [f for f in chosen if f not in self.factors]
-            if unknown:
-                raise ValueError(f"{key}: {unknown} not among the study's factors {sorted(self.factors)}")
         if len(set(self.controls)) != len(self.controls):
             raise ValueError(f"controls: each at most once, got {self.controls}")
         max_count = self.bounds.max_objects - 1  # room for the target
