@@ -13,6 +13,7 @@ table and format, plus ``comparisons``), ``figures/`` (PNGs, gallery media),
 from __future__ import annotations
 
 import json
+import os
 import shutil
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -243,7 +244,8 @@ def build_report(
         published_note = None
         if cfg.published.enabled:
             published_note = (
-                f"Rows marked (published) are figures from the {source} ({reference}), shown beside this "
+                f"Rows marked (published) are figures from the {source} ({_shown(reference, base_dir)}), "
+                "shown beside this "
                 "study's results for the same model; they are not results of this study."
                 if reference else
                 "Published figures: no reference CSV found (../shared/reference/ladev_paper_tables.csv); "
@@ -265,6 +267,15 @@ def build_report(
     metrics_path.parent.mkdir(parents=True, exist_ok=True)
     written.append(_write(metrics_path, json.dumps(agg.metrics, indent=2, sort_keys=False) + "\n"))
     return ReportResult(agg, written, reference)
+
+
+def _shown(path: Path, base_dir: Path) -> str:
+    """A path as the report shows it: relative to the checkout, so that the report is the same
+    wherever the checkout lies."""
+    try:
+        return os.path.relpath(path, base_dir)
+    except ValueError:  # another drive (Windows)
+        return path.name
 
 
 def _write(path: Path, text: str) -> Path:

@@ -46,12 +46,13 @@ def is_excluded(path: str, prefixes: tuple[str, ...]) -> bool:
 
 
 def makefile_assets(env: dict[str, str]) -> None:
-    """The Makefile's choice: the asset pack beside the checkout, when the user chose none."""
+    """The Makefile's choice: the asset pack beside the checkout, when the user chose none
+    (the committed lock is made by ``make run``)."""
     if "MS_ASSET_DIR" in os.environ:
         return
     pack = ROOT.parent / "shared" / "assets"
     if (pack / "data").is_dir():
-        env["MS_ASSET_DIR"] = str(pack)
+        env["MS_ASSET_DIR"] = str(pack.resolve())
 
 
 def test_a_clean_clone_reproduces_every_outcome_hash_of_the_committed_lock(tmp_path: Path, monkeypatch):
@@ -63,6 +64,10 @@ def test_a_clean_clone_reproduces_every_outcome_hash_of_the_committed_lock(tmp_p
     for key, value in env.items():
         monkeypatch.setenv(key, value)
 
+    # Beside the copy, what lies beside the checkout (the published figures, the asset pack)
+    shared = ROOT.parent / "shared"
+    if shared.is_dir():
+        (tmp_path / "shared").symlink_to(shared, target_is_directory=True)
     repo = copy_repo(ROOT, tmp_path / "repo", commit=True)
     run([str(BIN / "dvc"), "repro"], repo, timeout=1800)
     fresh = yaml.safe_load((repo / "dvc.lock").read_text())

@@ -234,3 +234,22 @@ def test_measure_is_deterministic():
     eps = control_study(trials=2)
     a, b = measure(eps, "end", OPTS), measure(eps, "end", OPTS)
     assert a.controls.equals(b.controls) and a.success.equals(b.success)
+
+
+def test_paper_cells_with_trials_count_each_scene_once_in_their_interval():
+    from ladev_lib.report.cells import success_cells
+
+    # level 1: 3 scenes x 4 trials (clustered); level 3: 12 scenes once each; same 9/12 rate
+    rows = [episode(f"a{i}", end=i < 2 or t < 1, trial=t) for i in range(3) for t in range(4)]
+    rows += [episode(f"b{i}", end=i < 9, level="3") for i in range(12)]
+    cells = success_cells(frame(rows)).filter(pl.col("factor") == "num_objects")
+    clustered = cells.filter(pl.col("level") == "1").row(0, named=True)
+    single = cells.filter(pl.col("level") == "3").row(0, named=True)
+    assert clustered["success_rate"] == single["success_rate"] == 0.75 and clustered["n"] == 12
+    assert clustered["interval"] == "Wilson over scenes" and single["interval"] == "Wilson"
+    # scene means 1, 1, 1/4: Wilson of 2.25 successes in 3 scenes, wider than 9 of 12 episodes
+    w3 = wilson_interval(2.25, 3)
+    assert (clustered["ci_low"], clustered["ci_high"]) == pytest.approx(w3)
+    assert (single["ci_low"], single["ci_high"]) == pytest.approx(wilson_interval(9, 12))
+    avg = cells.filter(pl.col("level") == "avg").row(0, named=True)
+    assert avg["interval"] == "Wilson over scenes" and avg["n"] == 24
