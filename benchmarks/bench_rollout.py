@@ -206,7 +206,7 @@ def throughput(specs: list[Any], size: tuple[int, int]) -> None:
                 s = result.summary
                 import polars as pl
 
-                df = pl.read_parquet(result.table)
+                df = pl.DataFrame([t.model_dump() for t in s.timings])  # the timings table's rows
                 load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
                 steady = 3600 * workers / df["total_seconds"].mean()
                 print(f"{policy:9s} workers {workers}: {s.planned} episodes in {wall:6.1f} s -> "

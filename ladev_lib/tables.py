@@ -29,7 +29,8 @@ from ladev_lib.errors import LadevError
 Factor = Literal["num_objects", "instruction", "object_set", "environment"]
 ObjectSetName = Literal["simpler", "ycb"]
 Environment = Literal["default", "lighting", "camera"]
-InstructionKind = Literal["basic", "paraphrase"]
+InstructionKind = Literal["basic", "paraphrase", "control"]
+ControlKind = Literal["empty", "unrelated", "other_object"]
 EpisodeStatus = Literal["success", "failure", "error", "invalid_scene"]
 
 
@@ -88,18 +89,27 @@ class InstructionRow(TableRow):
     """One instruction for a scene: the ``paraphrase`` stage's output (``instructions.parquet``)."""
 
     TABLE: ClassVar[str] = "instructions"
+    VERSION: ClassVar[int] = 2  # 2: control instructions (kind 'control', column 'control')
 
-    instruction_id: str = Field(description="Unique id: '<scene_id>/basic' or '<scene_id>/para-<k>'.")
+    instruction_id: str = Field(
+        description="Unique id: '<scene_id>/basic', '<scene_id>/para-<k>' or '<scene_id>/control-<kind>'."
+    )
     scene_id: str = Field(description="Scene the instruction belongs to.")
-    kind: InstructionKind = Field(description="basic | paraphrase")
+    kind: InstructionKind = Field(
+        description="basic | paraphrase | control (an instruction that does not ask for the scene's "
+        "task, run to see whether the policy follows language)"
+    )
     text: str = Field(description="The instruction given to the policy.")
     similarity: float | None = Field(default=None, description="Cosine similarity to the basic instruction (null for basic).")
     parsed_task: str | None = Field(default=None, description="Task type read back from the text.")
     parsed_source: str | None = Field(default=None, description="Catalog id of the source read back from the text.")
     parsed_target: str | None = Field(default=None, description="Catalog id of the target read back from the text.")
-    valid: bool = Field(description="Both checks passed (always true for basic).")
+    valid: bool = Field(description="Both checks passed (always true for basic, false for control).")
     reason: str | None = Field(default=None, description="Why the candidate was rejected.")
-    selected: bool = Field(default=False, description="Used in rollout (basic, and the one paraphrase drawn per scene).")
+    selected: bool = Field(
+        default=False,
+        description="Used in rollout (basic, the one paraphrase drawn per scene, and controls).",
+    )
     llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
     canonical_similarity: float | None = Field(
         default=None,
@@ -107,14 +117,24 @@ class InstructionRow(TableRow):
         "'similarity' is below the threshold (the better of the two must reach it); null otherwise "
         "and for basic.",
     )
+    control: ControlKind | None = Field(
+        default=None,
+        description="For kind 'control': empty (no instruction), unrelated (a sentence about "
+        "something else) or other_object (the same task on another object); null otherwise.",
+    )
 
 
 class EpisodeRow(TableRow):
     """One rolled-out episode: the ``rollout`` stage's output (``episodes/<policy>.parquet``)."""
 
     TABLE: ClassVar[str] = "episodes"
+    VERSION: ClassVar[int] = 2
+    """2: success at the end and at any step, trials, controls; timings moved to the
+    ``episode_timings`` table so that this table is the same on every machine."""
 
-    episode_id: str = Field(description="Content hash of (spec, instruction, policy+config, seed, sim config).")
+    episode_id: str = Field(
+        description="Content hash of (spec, instruction, policy+config, seed, sim and rollout config)."
+    )
     study: str = Field(description="Study name.")
     scene_id: str = Field(description="Scene id.")
     instruction_id: str = Field(description="Instruction id.")
@@ -125,24 +145,56 @@ class EpisodeRow(TableRow):
     num_objects: int = Field(description="Source plus distractors (the target not counted), as in scenes.parquet.")
     object_set: str = Field(description="simpler | ycb")
     environment: str = Field(description="default | lighting | camera")
-    instruction_kind: InstructionKind = Field(description="basic | paraphrase")
+    instruction_kind: InstructionKind = Field(description="basic | paraphrase | control")
     instruction: str = Field(description="Instruction text given to the policy.")
     robot: str = Field(description="Robot used.")
-    seed: int = Field(description="Episode seed.")
-    status: EpisodeStatus = Field(description="success | failure | error | invalid_scene")
-    success: bool | None = Field(description="Task success; null for error and invalid_scene.")
+    seed: int = Field(description="Episode seed (derived from the scene's seed and the trial).")
+    status: EpisodeStatus = Field(
+        description="success | failure | error | invalid_scene; success/failure follow success "
+        "at the final step (success_end)."
+    )
+    success: bool | None = Field(description="Task success at the final step (= success_end); null for error and invalid_scene.")
     predicates_json: str = Field(default="{}", description="Final values of the task's named predicates, as JSON.")
     steps: int = Field(default=0, description="Control steps taken.")
-    sim_seconds: float = Field(default=0.0, description="Time in simulation and rendering.")
-    policy_seconds: float = Field(default=0.0, description="Time in the policy.")
-    total_seconds: float = Field(default=0.0, description="Wall time of the episode.")
     error: str | None = Field(default=None, description="Error or invalid-scene reason.")
     video_path: str | None = Field(default=None, description="MP4 of the episode, relative to the repo.")
     first_frame_path: str | None = Field(default=None, description="PNG of the first policy-camera frame.")
     last_frame_path: str | None = Field(default=None, description="PNG of the last policy-camera frame.")
+    trial: int = Field(default=0, description="Trial of this (scene, instruction): 0, 1, ... (study.trials_per_scene).")
+    control: ControlKind | None = Field(
+        default=None, description="The control instruction's kind (instruction_kind 'control'); null otherwise."
+    )
+    success_end: bool | None = Field(
+        default=None, description="Task success at the final step; null for error and invalid_scene."
+    )
+    success_any: bool | None = Field(
+        default=None, description="Task success at any step (the episode need not end there)."
+    )
+    first_success_step: int | None = Field(
+        default=None, description="First step (1-based) after which the task held; null if it never did."
+    )
 
     def predicates(self) -> dict[str, bool]:
         return dict(json.loads(self.predicates_json))
+
+
+class EpisodeTimingRow(TableRow):
+    """Where an episode's time went: the ``rollout`` stage's ``timings/<policy>.parquet``.
+
+    Kept apart from the episode table because it differs on every run and machine;
+    DVC tracks it without caching it, and no outcome depends on it.
+    """
+
+    TABLE: ClassVar[str] = "episode_timings"
+
+    episode_id: str = Field(description="Episode id (episodes/<policy>.parquet).")
+    policy: str = Field(description="Policy label.")
+    steps: int = Field(default=0, description="Control steps taken.")
+    from_store: bool = Field(description="The outcome came from the episode store; its timings are from the run that made it.")
+    sim_seconds: float = Field(default=0.0, description="Time in simulation and rendering.")
+    policy_seconds: float = Field(default=0.0, description="Time in the policy.")
+    total_seconds: float = Field(default=0.0, description="Wall time of the episode.")
+    host: str = Field(default="", description="Machine that ran the episode (hostname, CPU), when known.")
 
 
 # -- schema derivation ---------------------------------------------------------

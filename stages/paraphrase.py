@@ -1,7 +1,8 @@
 """Stage ``paraphrase``: basic instructions -> validated paraphrases (instructions.parquet).
 
-Reads params.yaml: study.seed, study.paraphrases_per_instruction, llm, paraphrase,
-prompts.paraphrase, prompts.parse_instruction, paths.
+Reads params.yaml: study.seed, study.paraphrases_per_instruction, study.controls,
+study.control_factors, llm, paraphrase, prompts.paraphrase, prompts.parse_instruction,
+paths. Control instructions (``study.controls``) are added as rows of kind ``control``.
 """
 
 from __future__ import annotations
@@ -23,6 +24,8 @@ from ladev_lib.language.config import ParaphraseConfig  # noqa: E402
 from ladev_lib.language.pipeline import make_validator, paraphrase_scenes, scene_tasks  # noqa: E402
 from ladev_lib.llm.config import LLMConfig, make_client  # noqa: E402
 from ladev_lib.llm.prompts import load_prompts  # noqa: E402
+from ladev_lib.study.controls import control_rows  # noqa: E402
+from ladev_lib.study.design import StudyConfig  # noqa: E402
 from ladev_lib.tables import (  # noqa: E402
     CompiledSceneRow,
     InstructionRow,
@@ -63,7 +66,8 @@ def main(argv: list[str] | None = None) -> int:
         seed=int(study["seed"]),
         progress=lambda items, total, desc: tqdm(items, total=total, desc=desc),
     )
-    write_table(outcome.rows, paths["instructions"], InstructionRow)
+    controls = control_rows(scenes, compiled, section(params, "study", StudyConfig), catalog)
+    write_table([*outcome.rows, *controls], paths["instructions"], InstructionRow)
 
     s = outcome.summary
     rate = f"{100 * s['valid_rate']:.1f}%" if s["valid_rate"] is not None else "n/a"
@@ -72,7 +76,7 @@ def main(argv: list[str] | None = None) -> int:
         f"{s['candidates']} candidates, {s['valid']} valid ({rate}); "
         f"{s['selected_paraphrases']}/{s['instruction_scenes']} instruction-factor scenes got a paraphrase; "
         f"LLM calls {s['llm_calls']}, cached {s['llm_cache_hits']}; embeddings {cfg.embedding_model} "
-        f"({validator.precision}) -> {paths['instructions']}"
+        f"({validator.precision}); {len(controls)} control instructions -> {paths['instructions']}"
     )
     if s["rejections"]:
         print("  rejected: " + json.dumps(s["rejections"]))

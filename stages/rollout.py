@@ -1,7 +1,8 @@
 """DVC stage ``rollout``: every planned episode of one policy -> ``episodes/<policy>.parquet``.
 
 Reads params.yaml: ``policy.<NAME>`` (registry name and keyword arguments),
-``sim``, ``robot``, ``executor``, ``rollout``, ``study.name`` and ``paths.*``.
+``sim``, ``robot``, ``executor``, ``rollout``, ``study.name``,
+``study.trials_per_scene``, ``study.trial_factors`` and ``paths.*``.
 Episodes already in the policy's store are not run again. Run from the
 repository root:
 
@@ -39,7 +40,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"rollout: {exc}", file=sys.stderr)
         return 1
     print(result.summary.format())
-    print(f"rollout: wrote {result.table}")
+    print(f"rollout: wrote {result.table}" + (f" and {result.timings}" if result.timings else ""))
     if result.exit_code:
         print(
             f"rollout: error rate {100 * result.summary.error_rate:.1f}% is above the configured "

@@ -73,8 +73,32 @@ def command(params_file: Path, metrics_file: Path | None, as_json: bool) -> None
         return
     present = {k.split("/")[2] for k in metrics if k.startswith("success_rate/") and k.count("/") == 2}
     tasks = [t for t in TASK_ORDER if t in present] + sorted(present - set(TASK_ORDER))
-    width = max(len(p) for p in per_policy) + 2
-    click.echo("Success rate".ljust(width) + "all".rjust(8) + "".join(t.rjust(11) for t in tasks))
-    for policy, rate in per_policy.items():
-        cells = "".join(_pct(metrics.get(f"success_rate/{policy}/{t}")).rjust(11) for t in tasks)
-        click.echo(policy.ljust(width) + _pct(rate).rjust(8) + cells)
+    chosen = {0: "end", 1: "any"}.get(int(metrics.get("success_definition", 0) or 0), "end")
+    # Both definitions when the metrics have them (older metrics: the one rate there is).
+    definitions = [d for d in ("end", "any") if f"success_rate_{d}/{next(iter(per_policy))}" in metrics]
+    rows = [(f"success_rate_{d}", d) for d in definitions] or [("success_rate", chosen)]
+    width = max(18, max(len(p) for p in per_policy) + 2)
+    for prefix, definition in rows:
+        title = {"end": "Success at end", "any": "Success at any step"}[definition]
+        mark = " *" if definition == chosen and len(rows) > 1 else ""
+        click.echo((title + mark).ljust(width) + "all".rjust(8) + "".join(t.rjust(11) for t in tasks))
+        for policy in per_policy:
+            cells = "".join(_pct(metrics.get(f"{prefix}/{policy}/{t}")).rjust(11) for t in tasks)
+            click.echo(policy.ljust(width) + _pct(metrics.get(f"{prefix}/{policy}")).rjust(8) + cells)
+    if len(rows) > 1:
+        click.echo(f"* the tables' definition (report.success={chosen})")
+    controls = [p for p in per_policy if f"control/{p}/real" in metrics]
+    if controls:
+        click.echo("Controls (same scenes): " + "; ".join(
+            f"{p} real {_pct(metrics[f'control/{p}/real'])}, control {_pct(metrics[f'control/{p}/control'])}"
+            f" ({_signed_pp(metrics[f'control/{p}/diff'])})" for p in controls
+        ))
+    repeated = [p for p in per_policy if metrics.get(f"repeated_scenes/{p}")]
+    if repeated:
+        click.echo(f"Trials: {metrics.get('trials_per_scene', 1)} per scene; scenes flipping across trials: " + "; ".join(
+            f"{p} {metrics[f'flipping_scenes/{p}']}/{metrics[f'repeated_scenes/{p}']}" for p in repeated
+        ))
+
+
+def _signed_pp(value: Any) -> str:
+    return "–" if value is None else f"{100 * float(value):+.1f} pp"

@@ -28,9 +28,9 @@ class ParaphraseConfig(BaseModel):
     device: str = Field(default="cpu", description="Torch device for the embedding model.")
     precision: Literal["auto", "fp32", "bf16"] = Field(
         default="auto",
-        description="Embedding arithmetic on CPU: bf16 autocast is about 1.6x faster where the CPU has "
-        "native bf16 (AVX512-BF16, AMX) and moved MiniLM similarities by 0.002 at most on the "
-        "labelled pairs; auto picks bf16 there, fp32 elsewhere.",
+        description="Embedding arithmetic on CPU: auto and fp32 compute in fp32 on every machine, so "
+        "verdicts do not depend on the CPU; bf16 autocast (about 1.6x faster where the CPU has native "
+        "bf16, moves MiniLM similarities by up to 0.002) only when named.",
     )
     reader: Literal["auto", "offline", "llm"] = Field(
         default="auto",

@@ -13,6 +13,7 @@ table and format, plus ``comparisons``), ``figures/`` (PNGs, gallery media),
 from __future__ import annotations
 
 import json
+import os
 import shutil
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -22,7 +23,7 @@ import polars as pl
 
 from ladev_lib.report import figures as figs
 from ladev_lib.report.cells import count_outcomes, empty_episodes, filter_study, success_cells
-from ladev_lib.report.comparisons import compare_levels
+from ladev_lib.report.comparisons import Power, compare_levels
 from ladev_lib.report.config import ReportConfig
 from ladev_lib.report.gallery import gallery_items
 from ladev_lib.report.html import (
@@ -40,6 +41,16 @@ from ladev_lib.report.layout import (
     TableLayout,
     layout_from_frame,
     table_frame,
+)
+from ladev_lib.report.measurement import (
+    BootstrapOptions,
+    Measurement,
+    measure,
+    measurement_markdown,
+    measurement_tables,
+    split_controls,
+    success_caption,
+    with_success_definition,
 )
 from ladev_lib.report.published import load_published, resolve_reference_csv
 from ladev_lib.report.render import CellStyle, render_latex, render_markdown, write_csv
@@ -83,7 +94,7 @@ def load_inputs(
 
 @dataclass(frozen=True)
 class Aggregates:
-    episodes: pl.DataFrame  # of the study only
+    episodes: pl.DataFrame  # of the study only, real instructions, status per report.success
     dropped_other_studies: int
     policies: list[str]
     tasks: list[str]
@@ -94,6 +105,8 @@ class Aggregates:
     layouts: list[TableLayout]
     summary: StudySummary
     metrics: dict[str, float | int | None]
+    measurement: Measurement
+    all_episodes: pl.DataFrame  # of the study, controls included, as recorded
 
 
 def ordered_policies(episodes: pl.DataFrame, labels: dict[str, str]) -> list[str]:
@@ -112,8 +125,18 @@ def aggregate(
     inputs: StudyInputs, cfg: ReportConfig, study: str | None = None,
     published: pl.DataFrame | None = None, published_source: str | None = None,
 ) -> Aggregates:
-    """Everything the report shows, computed from the inputs (no files written)."""
-    episodes, dropped = filter_study(inputs.episodes, study)
+    """Everything the report shows, computed from the inputs (no files written).
+
+    The paper's tables, the comparisons and the headline rates use the real
+    instructions (controls apart) with success as ``cfg.success`` defines it;
+    the measurement tables use every episode.
+    """
+    recorded, dropped = filter_study(inputs.episodes, study)
+    real, _ = split_controls(recorded)
+    episodes = with_success_definition(real, cfg.success)
+    opts = BootstrapOptions(cfg.confidence, cfg.bootstrap_samples, cfg.bootstrap_seed)
+    power = Power(cfg.mdd_alpha, cfg.mdd_power)
+    measurement = measure(recorded, cfg.success, opts, cfg.mdd_alpha, cfg.mdd_power)
     policies, tasks = ordered_policies(episodes, cfg.model_labels), ordered_tasks(episodes)
     cells = success_cells(episodes, cfg.confidence)
     per_task = count_outcomes(episodes, ["policy", "task"], cfg.confidence)
@@ -124,12 +147,15 @@ def aggregate(
         frame = table_frame(spec, cells, published, policies, tasks, cfg.model_labels)
         frames[spec.slug] = frame
         layouts.append(layout_from_frame(spec, frame, policies, tasks, cfg.model_labels, published_source))
-    summary = summarize_study(episodes, inputs.scenes, inputs.compiled, inputs.instructions)
+    summary = summarize_study(
+        with_success_definition(recorded, cfg.success), inputs.scenes, inputs.compiled, inputs.instructions
+    )
     return Aggregates(
         episodes=episodes, dropped_other_studies=dropped, policies=policies, tasks=tasks, cells=cells,
-        overall=overall, comparisons=compare_levels(episodes, cells, cfg.confidence, policies, tasks),
+        overall=overall, comparisons=compare_levels(episodes, cells, cfg.confidence, policies, tasks, power),
         table_frames=frames, layouts=layouts, summary=summary,
-        metrics=headline_metrics(summary, episodes),
+        metrics=headline_metrics(summary, episodes, measurement), measurement=measurement,
+        all_episodes=recorded,
     )
 
 
@@ -162,7 +188,7 @@ def build_report(
     published = load_published(reference, cfg.confidence) if reference else None
     source = cfg.published.source if reference else None
     agg = aggregate(inputs, cfg, study, published, source)
-    style = CellStyle(cfg.decimals, cfg.intervals, cfg.show_n, cfg.confidence)
+    style = CellStyle(cfg.decimals, cfg.intervals, cfg.show_n, cfg.confidence, success_caption(cfg.success))
     labels = cfg.model_labels
     tables_dir = _reset_dir(reports_dir / "tables")
     figures_dir = _reset_dir(reports_dir / "figures")
@@ -179,7 +205,17 @@ def build_report(
     if "csv" in cfg.formats:
         written.append(write_csv(agg.comparisons, tables_dir / "comparisons.csv"))
     if "md" in cfg.formats:
-        written.append(_write(tables_dir / "comparisons.md", _comparisons_markdown(agg.comparisons, labels)))
+        written.append(_write(
+            tables_dir / "comparisons.md", _comparisons_markdown(agg.comparisons, labels, style.success_caption)
+        ))
+        written.append(_write(
+            tables_dir / "measurement.md", measurement_markdown(agg.measurement, labels, cfg.confidence)
+        ))
+    if "csv" in cfg.formats:
+        m = agg.measurement
+        for name, frame in (("success_definitions", m.success), ("trial_agreement", m.agreement),
+                            ("controls", m.controls)):
+            written.append(write_csv(frame, tables_dir / f"{name}.csv"))
 
     figure_list: list[Figure] = []
     if cfg.figures:
@@ -208,7 +244,8 @@ def build_report(
         published_note = None
         if cfg.published.enabled:
             published_note = (
-                f"Rows marked (published) are figures from the {source} ({reference}), shown beside this "
+                f"Rows marked (published) are figures from the {source} ({_shown(reference, base_dir)}), "
+                "shown beside this "
                 "study's results for the same model; they are not results of this study."
                 if reference else
                 "Published figures: no reference CSV found (../shared/reference/ladev_paper_tables.csv); "
@@ -222,6 +259,8 @@ def build_report(
             gallery_size=cfg.gallery.size, confidence=cfg.confidence,
             dropped_other_studies=agg.dropped_other_studies, published_note=published_note,
             files=[p.relative_to(reports_dir).as_posix() for p in written if p.is_relative_to(reports_dir)],
+            measurement=measurement_tables(agg.measurement, labels, cfg.confidence),
+            success_caption=style.success_caption,
         )
         written.append(_write(reports_dir / "report.html", render_html(context)))
 
@@ -230,19 +269,31 @@ def build_report(
     return ReportResult(agg, written, reference)
 
 
+def _shown(path: Path, base_dir: Path) -> str:
+    """A path as the report shows it: relative to the checkout, so that the report is the same
+    wherever the checkout lies."""
+    try:
+        return os.path.relpath(path, base_dir)
+    except ValueError:  # another drive (Windows)
+        return path.name
+
+
 def _write(path: Path, text: str) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(text, encoding="utf-8")
     return path
 
 
-def _comparisons_markdown(comparisons: pl.DataFrame, labels: dict[str, str]) -> str:
+def _comparisons_markdown(comparisons: pl.DataFrame, labels: dict[str, str], success: str = "") -> str:
     rows = comparison_rows(comparisons, labels)
-    head: Sequence[str] = ("Model", "Task", "Comparison", "Test", "n", "Rates", "Diff (pp)", "Interval", "p", "Note")
-    keys = ("model", "task", "comparison", "test", "n", "rates", "diff", "interval", "p", "note")
+    head: Sequence[str] = (
+        "Model", "Task", "Comparison", "Test", "n", "Rates", "Diff (pp)", "Interval", "p", "MDD (pp)", "Note",
+    )
+    keys = ("model", "task", "comparison", "test", "n", "rates", "diff", "interval", "p", "mdd", "note")
     lines = [
         "**Comparisons between levels.** Differences are level − baseline in percentage points with "
-        "Newcombe intervals; p-values unadjusted for multiplicity.",
+        "Newcombe intervals; p-values unadjusted for multiplicity; MDD: the smallest difference the "
+        "comparison would detect at its n (80% power, 5% level). " + success,
         "",
         "| " + " | ".join(head) + " |",
         "|" + "---|" * len(head),

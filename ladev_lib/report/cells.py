@@ -4,6 +4,12 @@ A cell is one (policy, task, factor, level). Its rate counts only episodes the
 policy was judged on (``success`` or ``failure``); ``error`` (the rollout
 crashed) and ``invalid_scene`` (the scene could not be built as specified) are
 counted apart, because they say nothing about the policy.
+
+With several trials per scene (``study.trials_per_scene``) a cell's episodes
+are not independent: its interval is then the Wilson interval over scenes
+(each scene counts once, with its trials' mean success), which assumes the
+trials of a scene fully agree and so never overstates what the study shows.
+The column ``interval`` names the method of each row.
 """
 
 from __future__ import annotations
@@ -31,7 +37,8 @@ def count_outcomes(episodes: pl.DataFrame, keys: Sequence[str], confidence: floa
     """Outcome counts, success rate and Wilson interval per group of ``keys``.
 
     Columns: keys..., n_episodes, successes, failures, n_error, n_invalid_scene,
-    n (judged episodes), success_rate (null when n is 0), ci_low, ci_high.
+    n (judged episodes), success_rate (null when n is 0), ci_low, ci_high, interval
+    ("Wilson", or "Wilson over scenes" where a scene has several judged episodes).
     """
     status = pl.col("status")
     counts = episodes.group_by(list(keys)).agg(
@@ -41,7 +48,33 @@ def count_outcomes(episodes: pl.DataFrame, keys: Sequence[str], confidence: floa
         n_error=(status == "error").sum().cast(pl.Int64),
         n_invalid_scene=(status == "invalid_scene").sum().cast(pl.Int64),
     )
-    return with_rates(counts, confidence).sort(list(keys))
+    rated = with_rates(counts, confidence)
+    return with_scene_intervals(rated, episodes, keys, confidence).sort(list(keys))
+
+
+def with_scene_intervals(
+    rated: pl.DataFrame, episodes: pl.DataFrame, keys: Sequence[str], confidence: float
+) -> pl.DataFrame:
+    """Replace the Wilson bounds of groups where a scene has several judged episodes by the
+    Wilson bounds over scenes (scene-mean successes out of the number of scenes)."""
+    keys = list(keys)
+    judged = episodes.filter(pl.col("status").is_in(list(JUDGED)))
+    per_scene = judged.group_by([*keys, "scene_id"]).agg(
+        mean=(pl.col("status") == "success").cast(pl.Float64).mean(), n=pl.len()
+    )
+    scenes = per_scene.group_by(keys).agg(
+        scene_successes=pl.col("mean").sum(), n_scenes=pl.len().cast(pl.Int64),
+        clustered=pl.col("n").max() > 1,
+    )
+    low, high = wilson_exprs(pl.col("scene_successes"), pl.col("n_scenes"), confidence)
+    scenes = scenes.with_columns(scene_low=low, scene_high=high)
+    joined = rated.join(scenes, on=keys, how="left") if keys else rated.join(scenes, how="cross")
+    clustered = pl.col("clustered").fill_null(False)
+    return joined.with_columns(
+        ci_low=pl.when(clustered).then(pl.col("scene_low")).otherwise(pl.col("ci_low")),
+        ci_high=pl.when(clustered).then(pl.col("scene_high")).otherwise(pl.col("ci_high")),
+        interval=pl.when(clustered).then(pl.lit("Wilson over scenes")).otherwise(pl.lit("Wilson")),
+    ).select([*rated.columns, "interval"])
 
 
 def with_rates(counts: pl.DataFrame, confidence: float) -> pl.DataFrame:
@@ -64,14 +97,12 @@ def success_cells(episodes: pl.DataFrame, confidence: float = 0.95) -> pl.DataFr
     the level rates, and it keeps a proper interval when n differs.
     """
     cells = count_outcomes(episodes, CELL_KEYS, confidence)
-    count_cols = ["n_episodes", "successes", "failures", "n_error", "n_invalid_scene"]
+    averaged = episodes.filter(pl.col("factor").is_in(list(AVERAGED_FACTORS)))
     pooled = (
-        cells.filter(pl.col("factor").is_in(list(AVERAGED_FACTORS)))
-        .group_by(["policy", "task", "factor"])
-        .agg([pl.col(c).sum() for c in count_cols])
+        count_outcomes(averaged, ["policy", "task", "factor"], confidence)
         .with_columns(level=pl.lit(AVERAGE_LEVEL))
+        .select(cells.columns)
     )
-    pooled = with_rates(pooled, confidence).select(cells.columns)
     return pl.concat([cells, pooled]).sort(list(CELL_KEYS))
 
 

@@ -11,11 +11,17 @@
 
 Differences are ``level - baseline`` in percentage points: negative means the
 level is harder. p-values are per comparison, not adjusted for multiplicity.
+Every comparison states its minimum detectable difference (``mdd_pct``: the
+smallest difference it would detect with 80 % power at the 5 % level, paired
+for the instruction factor, two independent proportions otherwise, first vs
+last level for the trend), so "no difference" can be told from "too few scenes".
+With several trials, pairs are formed per (scene, trial).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import polars as pl
@@ -26,6 +32,8 @@ from ladev_lib.report.stats import (
     cochran_armitage,
     fisher_exact,
     mcnemar_exact,
+    mdd_paired,
+    mdd_two_proportions,
     newcombe_paired,
     newcombe_unpaired,
 )
@@ -56,7 +64,16 @@ COMPARISON_SCHEMA: dict[str, Any] = {
     "baseline_only": pl.Int64,
     "level_only": pl.Int64,
     "note": pl.String,
+    "mdd_pct": pl.Float64,
 }
+
+
+@dataclass(frozen=True)
+class Power:
+    """The minimum detectable difference's settings."""
+
+    alpha: float = 0.05
+    power: float = 0.8
 
 
 def _pct(x: float | None) -> float | None:
@@ -66,14 +83,14 @@ def _pct(x: float | None) -> float | None:
 def paired_counts(episodes: pl.DataFrame, factor: str, baseline: str, level: str) -> pl.DataFrame:
     """Per policy and task: pairs (same scene) by outcome under ``baseline`` and ``level``.
 
-    Only scenes judged under both levels pair up; ``unpaired`` counts the judged
-    episodes left without a partner (the other one errored or is missing).
-    If a scene has several episodes at one level, the first by instruction id is used.
+    Only scenes judged under both levels pair up, trial by trial; ``unpaired`` counts the
+    judged episodes left without a partner (the other one errored or is missing).
+    If a scene has several episodes at one level and trial, the first by instruction id is used.
     """
     judged = episodes.filter(
         (pl.col("factor") == factor) & pl.col("status").is_in(list(JUDGED))
     ).with_columns(ok=pl.col("status") == "success")
-    keys = ["policy", "task", "scene_id"]
+    keys = ["policy", "task", "scene_id", "trial"]
 
     def side(lv: str, name: str) -> pl.DataFrame:
         return (
@@ -105,7 +122,11 @@ def paired_counts(episodes: pl.DataFrame, factor: str, baseline: str, level: str
     )
 
 
-def _paired_rows(episodes: pl.DataFrame, confidence: float) -> list[dict[str, Any]]:
+def _mdd_pct(value: float | None) -> float | None:
+    return None if value is None else 100.0 * value
+
+
+def _paired_rows(episodes: pl.DataFrame, confidence: float, power: Power) -> list[dict[str, Any]]:
     rows = []
     for factor, (baseline, level) in PAIRED.items():
         for r in paired_counts(episodes, factor, baseline, level).iter_rows(named=True):
@@ -127,6 +148,7 @@ def _paired_rows(episodes: pl.DataFrame, confidence: float) -> list[dict[str, An
                     diff_pct=_pct(diff.estimate), diff_low_pct=_pct(diff.low), diff_high_pct=_pct(diff.high),
                     p_value=mcnemar_exact(b, c),
                     baseline_only=b, level_only=c, note=note,
+                    mdd_pct=_mdd_pct(mdd_paired(n_pairs, (b + c) / n_pairs, power.alpha, power.power)),
                 )
             )
     return rows
@@ -141,7 +163,7 @@ def _level_counts(cells: pl.DataFrame, factor: str) -> dict[tuple[str, str], dic
     return out
 
 
-def _unpaired_rows(cells: pl.DataFrame, confidence: float) -> list[dict[str, Any]]:
+def _unpaired_rows(cells: pl.DataFrame, confidence: float, power: Power) -> list[dict[str, Any]]:
     rows = []
     for factor, (baseline, levels) in UNPAIRED.items():
         for (policy, task), by_level in sorted(_level_counts(cells, factor).items()):
@@ -162,12 +184,13 @@ def _unpaired_rows(cells: pl.DataFrame, confidence: float) -> list[dict[str, Any
                         baseline_pct=100.0 * k0 / n0, level_pct=100.0 * k1 / n1,
                         diff_pct=_pct(diff.estimate), diff_low_pct=_pct(diff.low),
                         diff_high_pct=_pct(diff.high), p_value=fisher_exact(k1, n1, k0, n0),
+                        mdd_pct=_mdd_pct(mdd_two_proportions(k0 / n0, n0, n1, power.alpha, power.power)),
                     )
                 )
     return rows
 
 
-def _trend_rows(cells: pl.DataFrame) -> list[dict[str, Any]]:
+def _trend_rows(cells: pl.DataFrame, power: Power) -> list[dict[str, Any]]:
     rows = []
     for factor in TREND:
         for (policy, task), by_level in sorted(_level_counts(cells, factor).items()):
@@ -190,6 +213,10 @@ def _trend_rows(cells: pl.DataFrame) -> list[dict[str, Any]]:
                     statistic=None if test is None else test.z,
                     p_value=None if test is None else test.p_value,
                     note="undefined: every judged episode had the same outcome" if test is None else None,
+                    mdd_pct=_mdd_pct(mdd_two_proportions(
+                        by_level[first][0] / by_level[first][1], by_level[first][1], by_level[last][1],
+                        power.alpha, power.power,
+                    )),
                 )
             )
     return rows
@@ -228,15 +255,17 @@ def compare_levels(
     confidence: float = 0.95,
     policies: Sequence[str] = (),
     tasks: Sequence[str] = (),
+    power: Power | None = None,
 ) -> pl.DataFrame:
     """Every comparison the design supports, one row each (see the module docstring).
 
     Rows are ordered by factor, then by ``policies`` and ``tasks`` (others after, by name).
     """
+    power = power or Power()
     rows = (
-        _paired_rows(episodes, confidence)
-        + _unpaired_rows(cells, confidence)
-        + _trend_rows(cells)
+        _paired_rows(episodes, confidence, power)
+        + _unpaired_rows(cells, confidence, power)
+        + _trend_rows(cells, power)
         + _homogeneity_rows(cells)
     )
     columns = {k: [r.get(k) for r in rows] for k in COMPARISON_SCHEMA}

@@ -75,6 +75,17 @@ class ReportConfig(BaseModel):
     gallery: GalleryConfig = Field(default_factory=GalleryConfig)
     figures: bool = Field(default=True, description="Write PNG figures.")
     html: bool = Field(default=True, description="Write the HTML report.")
+    success: Literal["end", "any"] = Field(
+        default="end",
+        description="Success definition of every table: at the final step (end) or at any step "
+        "(any). Named in every caption; the summary shows both.",
+    )
+    bootstrap_samples: int = Field(
+        default=2000, ge=100, le=100_000, description="Resamples of the cluster bootstrap over scenes."
+    )
+    bootstrap_seed: int = Field(default=0, ge=0, description="Seed of the cluster bootstrap (intervals repeat exactly).")
+    mdd_power: float = Field(default=0.8, gt=0.5, lt=1.0, description="Power of the minimum detectable difference.")
+    mdd_alpha: float = Field(default=0.05, gt=0.0, lt=0.5, description="Two-sided level of the minimum detectable difference.")
 
     def label(self, policy: str) -> str:
         return self.model_labels.get(policy, policy)

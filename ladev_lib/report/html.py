@@ -17,6 +17,7 @@ from ladev_lib import __version__
 from ladev_lib.report.cells import AVERAGE_LEVEL
 from ladev_lib.report.gallery import GalleryItem
 from ladev_lib.report.layout import Cell, TableLayout, task_label
+from ladev_lib.report.measurement import TextTable
 from ladev_lib.report.render import CellStyle, cell_tooltip, format_cell, notes
 from ladev_lib.report.summary import StudySummary
 
@@ -81,7 +82,7 @@ def html_table(layout: TableLayout, style: CellStyle) -> HtmlTable:
         rows.append(HtmlRow(row.label, row.published, cells))
     return HtmlTable(
         key=layout.spec.key,
-        caption=layout.spec.caption,
+        caption=" ".join(x for x in (layout.spec.caption, style.success_caption) if x),
         groups=[(task_label(t), k) for t in layout.tasks],
         columns=[layout.column_label(lv) for _ in layout.tasks for lv in layout.columns],
         rows=rows,
@@ -105,7 +106,8 @@ def overall_table(overall: pl.DataFrame, policies: list[str], tasks: list[str],
             cells.append(_html_cell(cell, CellStyle(style.decimals + 1, True, True, style.confidence),
                                     average=False, published=False, group_start=True))
         rows.append(HtmlRow(labels.get(policy, policy), False, cells))
-    return HtmlTable("", "Success over all factors", [], [*map(task_label, tasks), "All tasks"], rows, [])
+    caption = " ".join(x for x in ("Success over all factors.", style.success_caption) if x)
+    return HtmlTable("", caption, [], [*map(task_label, tasks), "All tasks"], rows, [])
 
 
 def _fmt(x: float | None, digits: int = 1, signed: bool = False) -> str:
@@ -156,6 +158,9 @@ def comparison_rows(comparisons: pl.DataFrame, labels: dict[str, str]) -> list[d
             interval=interval, discordant=counts,
             statistic=_fmt(r["statistic"], 2) if r["statistic"] is not None else "",
             p=_fmt_p(r["p_value"]), note=r["note"] or "",
+            mdd=_fmt(r["mdd_pct"]) if r.get("mdd_pct") is not None else (
+                "> 100" if r["diff_pct"] is not None and r["test"] != "" else ""
+            ),
             significant="sig" if r["p_value"] is not None and r["p_value"] < 0.05 else "",
         ))
     return out
@@ -181,10 +186,11 @@ def report_context(
     *, study: str, summary: StudySummary, overall: HtmlTable, tables: list[HtmlTable],
     comparisons: list[tuple[str, list[dict[str, str]]]], figures: list[Figure], gallery: list[GalleryItem],
     gallery_size: int, confidence: float, dropped_other_studies: int, published_note: str | None,
-    files: list[str],
+    files: list[str], measurement: list[TextTable] | None = None, success_caption: str = "",
 ) -> dict[str, Any]:
     return dict(
         study=study, summary=summary, overall=overall, tables=tables, comparisons=comparisons,
         figures=figures, gallery=gallery, gallery_size=gallery_size, confidence=confidence,
         dropped_other_studies=dropped_other_studies, published_note=published_note, files=files,
+        measurement=measurement or [], success_caption=success_caption,
     )

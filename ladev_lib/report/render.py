@@ -30,6 +30,8 @@ class CellStyle:
     intervals: bool = False
     show_n: bool = False
     confidence: float = 0.95
+    success_caption: str = ""
+    """The success definition (``report.success``), named in every caption."""
 
 
 def fmt_pct(fraction: float, decimals: int) -> str:
@@ -106,7 +108,8 @@ def render_markdown(layout: TableLayout, style: CellStyle, title: str | None = N
     header = ["Model"] + [
         f"{task_label(t)} {layout.column_label(lv)}" for t in layout.tasks for lv in layout.columns
     ]
-    lines = [f"**Table {spec.key}.** {title or spec.caption}", ""]
+    caption = " ".join(x for x in (title or spec.caption, style.success_caption) if x)
+    lines = [f"**Table {spec.key}.** {caption}", ""]
     lines.append("| " + " | ".join(header) + " |")
     lines.append("|" + "---|" + "---:|" * (len(header) - 1))
     for row in layout.rows:
@@ -198,7 +201,8 @@ def render_latex(layout: TableLayout, style: CellStyle, study: str | None = None
 
 def _tex_notes(layout: TableLayout, style: CellStyle) -> list[str]:
     """Short notes for a caption (the Markdown notes are longer)."""
-    out = ["Success rate over judged episodes; errors and invalid scenes are excluded from $n$"
+    out = [tex_escape(style.success_caption)] if style.success_caption else []
+    out += ["Success rate over judged episodes; errors and invalid scenes are excluded from $n$"
            + (r" ($^{*}$: the cell has some; counts in the CSV)." if layout.excluded else ".")]
     if layout.spec.average:
         out.append(r"Avg.\ pools all levels.")

@@ -6,6 +6,10 @@
   independent (Newcombe 1998a, method 10) and paired (Newcombe 1998b, method 10).
 - Cochran–Armitage test for a linear trend of a proportion over ordered levels.
 - Pearson's chi-squared test of homogeneity over unordered levels.
+- Power: the minimum detectable difference (MDD) of an unpaired and a paired
+  comparison at its n (80 % power, 5 % level by default).
+- Cluster bootstrap intervals (scenes resampled whole) for rates over
+  episodes that share a scene: trials, paired instructions.
 
 All functions take counts and return plain floats (``None`` where a quantity is
 undefined, e.g. a rate over zero episodes), so callers never divide by zero.
@@ -14,12 +18,13 @@ undefined, e.g. a rate over zero episodes), so callers never divide by zero.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import polars as pl
 from scipy import stats as sps
+from scipy.optimize import brentq
 
 
 def z_value(confidence: float) -> float:
@@ -185,3 +190,111 @@ def chi2_homogeneity(successes: Sequence[int], totals: Sequence[int]) -> Homogen
     chi2 = float(((table - expected) ** 2 / expected).sum())
     dof = len(rows) - 1
     return HomogeneityTest(chi2, dof, float(sps.chi2.sf(chi2, dof)), float(expected.min()))
+
+
+# -- power: the smallest difference a comparison could detect ------------------
+
+def _z_power(alpha: float, power: float) -> tuple[float, float]:
+    return float(sps.norm.ppf(1.0 - alpha / 2.0)), float(sps.norm.ppf(power))
+
+
+def _smallest_root(gap: Callable[[float], float], high: float) -> float | None:
+    """The smallest d in (0, high] with gap(d) >= 0 (gap rises with d), or None."""
+    if high <= 0 or gap(high) < 0:
+        return None
+    grid = np.linspace(0.0, high, 401)[1:]
+    ok = [d for d in grid if gap(float(d)) >= 0]
+    hi = float(ok[0])
+    lo = max(hi - high / 400.0, 1e-12)
+    if gap(lo) >= 0:
+        return lo
+    return float(brentq(gap, lo, hi, xtol=1e-9))
+
+
+def mdd_two_proportions(p0: float, n0: int, n1: int, alpha: float = 0.05, power: float = 0.8) -> float | None:
+    """Minimum detectable difference between two independent proportions (two-sided z test).
+
+    The smallest ``d`` such that a level at ``p0 ± d`` (n1 episodes) differs from a
+    baseline at ``p0`` (n0 episodes) with probability ``power`` at level ``alpha``
+    (Fleiss' normal approximation, no continuity correction: pooled variance under the
+    null, unpooled under the alternative). The smaller of the two directions that fit
+    in [0, 1]; None when no difference is detectable at these n.
+    """
+    if n0 <= 0 or n1 <= 0:
+        return None
+    za, zb = _z_power(alpha, power)
+    best: float | None = None
+    for sign in (-1.0, 1.0):
+        room = p0 if sign < 0 else 1.0 - p0
+
+        def gap(d: float, sign: float = sign) -> float:
+            p1 = p0 + sign * d
+            pbar = (n0 * p0 + n1 * p1) / (n0 + n1)
+            null_sd = math.sqrt(max(pbar * (1 - pbar), 0.0) * (1 / n0 + 1 / n1))
+            alt_sd = math.sqrt(max(p0 * (1 - p0) / n0 + p1 * (1 - p1) / n1, 0.0))
+            return d - (za * null_sd + zb * alt_sd)
+
+        d = _smallest_root(gap, room)
+        if d is not None and (best is None or d < best):
+            best = d
+    return best
+
+
+def mdd_paired(n_pairs: int, discordant_rate: float, alpha: float = 0.05, power: float = 0.8) -> float | None:
+    """Minimum detectable paired difference (McNemar, Connor 1987's normal approximation).
+
+    A difference ``d`` = p(level only) - p(baseline only) is detected with ``power`` when
+    sqrt(n) d >= z_(1-alpha/2) sqrt(psi) + z_power sqrt(psi - d^2), with psi the rate of
+    discordant pairs: the observed one, and never below ``d`` (pairs cannot differ by more
+    than they disagree). None when no difference up to 1 is detectable with n pairs.
+    """
+    if n_pairs <= 0:
+        return None
+    za, zb = _z_power(alpha, power)
+    root_n = math.sqrt(n_pairs)
+
+    def gap(d: float) -> float:
+        psi = min(1.0, max(discordant_rate, d))
+        return root_n * d - (za * math.sqrt(psi) + zb * math.sqrt(max(psi - d * d, 0.0)))
+
+    return _smallest_root(gap, 1.0)
+
+
+# -- clustered intervals ---------------------------------------------------------
+
+def cluster_bootstrap_rate(
+    successes: Sequence[float],
+    totals: Sequence[float],
+    confidence: float = 0.95,
+    samples: int = 2000,
+    seed: int = 0,
+) -> tuple[float, float] | None:
+    """Percentile interval of sum(successes)/sum(totals), resampling clusters (scenes) whole.
+
+    Episodes of one scene (its trials, its instructions) are not independent; resampling
+    scenes with replacement keeps that dependence. Deterministic for a given seed.
+    None without clusters or episodes.
+    """
+    k = np.asarray(successes, dtype=float)
+    n = np.asarray(totals, dtype=float)
+    if k.size == 0 or n.sum() <= 0:
+        return None
+    rng = np.random.default_rng(seed)
+    idx = rng.integers(0, k.size, size=(samples, k.size))
+    num, den = k[idx].sum(axis=1), n[idx].sum(axis=1)
+    rates = num[den > 0] / den[den > 0]
+    tail = (1.0 - confidence) / 2.0
+    return float(np.quantile(rates, tail)), float(np.quantile(rates, 1.0 - tail))
+
+
+def cluster_bootstrap_mean(
+    values: Sequence[float],
+    weights: Sequence[float],
+    confidence: float = 0.95,
+    samples: int = 2000,
+    seed: int = 0,
+) -> tuple[float, float] | None:
+    """Percentile interval of a weighted mean over clusters: sum(values)/sum(weights), where
+    ``values[i]`` sums a cluster's per-unit values (e.g. paired differences) and
+    ``weights[i]`` counts its units. The same resampling as :func:`cluster_bootstrap_rate`."""
+    return cluster_bootstrap_rate(values, weights, confidence, samples, seed)

@@ -5,10 +5,16 @@ Metric names are flat and stable, for ``dvc metrics show`` / ``dvc exp show``:
     episodes, episodes_judged, errors, invalid_scenes, error_rate, invalid_scene_rate,
     scenes, scene_generation_ok_rate, compile_ok_rate, physical_validity_rate,
     paraphrase_candidates, paraphrase_valid_rate,
-    success_rate/<policy>, success_rate/<policy>/<task>
+    success_rate/<policy>, success_rate/<policy>/<task>           (report.success's definition)
+    success_rate_end/<policy>[/<task>], success_rate_any/<policy>[/<task>]
+    success_definition (0: end, 1: any), trials_per_scene (the most any scene had),
+    control/<policy>/real, control/<policy>/control, control/<policy>/diff (pooled controls),
+    flipping_scenes/<policy>, repeated_scenes/<policy>
 
 Rates are fractions in [0, 1] over judged episodes (errors and invalid scenes
-excluded), ``null`` when there is nothing to divide by.
+excluded), ``null`` when there is nothing to divide by; success rates are of the
+real instructions (controls apart). Nothing here measures time: the metrics are
+the same on every machine.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ from typing import Any
 import polars as pl
 
 from ladev_lib.report.cells import count_outcomes
+from ladev_lib.report.measurement import Measurement
 
 REASON_CHARS = 200
 
@@ -138,7 +145,9 @@ def summarize_study(
     return StudySummary(reasons=reasons, **values)
 
 
-def headline_metrics(summary: StudySummary, episodes: pl.DataFrame) -> dict[str, float | int | None]:
+def headline_metrics(
+    summary: StudySummary, episodes: pl.DataFrame, measurement: Measurement | None = None
+) -> dict[str, float | int | None]:
     """The flat metrics written to ``metrics.json`` (see the module docstring)."""
 
     def r4(x: float | None) -> float | None:
@@ -164,4 +173,20 @@ def headline_metrics(summary: StudySummary, episodes: pl.DataFrame) -> dict[str,
         metrics[f"success_rate/{r['policy']}"] = r4(r["success_rate"])
     for r in count_outcomes(episodes, ["policy", "task"]).iter_rows(named=True):
         metrics[f"success_rate/{r['policy']}/{r['task']}"] = r4(r["success_rate"])
+    if measurement is None:
+        return metrics
+    metrics["success_definition"] = 0 if measurement.definition == "end" else 1
+    trials = [int(t) for t in measurement.success["trials"].to_list()]
+    metrics["trials_per_scene"] = max(trials, default=1)
+    for r in measurement.success.iter_rows(named=True):
+        suffix = r["policy"] if r["task"] == "*" else f"{r['policy']}/{r['task']}"
+        for d in ("end", "any"):
+            value = r[f"{d}_pct"]
+            metrics[f"success_rate_{d}/{suffix}"] = None if value is None else round(value / 100.0, 4)
+    for r in measurement.controls.filter(pl.col("control") == "all").iter_rows(named=True):
+        for key in ("real", "control", "diff"):
+            metrics[f"control/{r['policy']}/{key}"] = round(r[f"{key}_pct"] / 100.0, 4)
+    for r in measurement.agreement.filter(pl.col("task") == "*").iter_rows(named=True):
+        metrics[f"flipping_scenes/{r['policy']}"] = r["flipping_scenes"]
+        metrics[f"repeated_scenes/{r['policy']}"] = r["scenes"]
     return metrics

@@ -77,9 +77,13 @@ def _finish(columns: Mapping[str, Sequence[object] | np.ndarray], study: str) ->
         .when(pl.col("status") == "failure").then(False),
         predicates_json=pl.lit("{}"),
         steps=pl.lit(80, dtype=pl.Int64),
-        sim_seconds=pl.lit(1.0),
-        policy_seconds=pl.lit(0.1),
-        total_seconds=pl.lit(1.2),
+        trial=pl.lit(0, dtype=pl.Int64),
+        control=pl.lit(None, dtype=pl.String),
+        success_end=pl.when(pl.col("status") == "success").then(True)
+        .when(pl.col("status") == "failure").then(False),
+        success_any=pl.when(pl.col("status") == "success").then(True)
+        .when(pl.col("status") == "failure").then(False),
+        first_success_step=pl.when(pl.col("status") == "success").then(pl.lit(80, dtype=pl.Int64)),
         error=pl.when(pl.col("status") == "error").then(pl.lit("RuntimeError: synthetic crash"))
         .when(pl.col("status") == "invalid_scene").then(pl.lit("objects overlap after settling")),
         video_path=pl.lit(None, dtype=pl.String),
@@ -229,6 +233,7 @@ def stage_tables_for(
         canonical_similarity=pl.lit(None, dtype=pl.Float64),
         parsed_task=pl.lit("pick_up"), parsed_source=pl.lit("coke_can"),
         parsed_target=pl.lit(None, dtype=pl.String), llm_call_ids=pl.lit([], dtype=pl.List(pl.String)),
+        control=pl.lit(None, dtype=pl.String),
     )
 
     def cast(frame: pl.DataFrame, model: type[SceneDesignRow | CompiledSceneRow | InstructionRow]) -> pl.DataFrame:

@@ -5,7 +5,8 @@ Three sections of ``params.yaml`` (validated with :func:`ladev_lib.config.sectio
 - ``policy.<label>``: ``{name: <registry name>, ...kwargs}`` (:class:`PolicyConfig`);
 - ``executor``: ``local`` (process pool), ``ray`` (cluster) or ``serial``
   (in-process, for debugging) (:data:`ExecutorConfig`);
-- ``rollout``: media, time limits and the tolerated error rate (:class:`RolloutConfig`).
+- ``rollout``: media, time limits, the tolerated error rate and whether episodes
+  end at the first success (:class:`RolloutConfig`).
 """
 
 from __future__ import annotations
@@ -101,4 +102,10 @@ class RolloutConfig(BaseModel):
     )
     crash_retries: int = Field(
         default=1, ge=0, le=5, description="Reruns of an episode whose worker process died."
+    )
+    stop_on_success: bool = Field(
+        default=False,
+        description="End an episode at the first step the task holds. Off (as SimplerEnv): episodes "
+        "run until the policy stops or the step limit, and both success at the final step and at "
+        "any step are recorded.",
     )

@@ -8,6 +8,10 @@ to the executor, and each outcome is put in the store the moment it arrives
 episodes in flight, and the next run picks up the rest. The table is built
 from the store, in plan order, so an interrupted-then-resumed run writes the
 same table as an uninterrupted one.
+
+The rows hold outcomes only; where each episode's time went (and on which
+machine) goes to ``summary.timings``, which the stage writes to its own table:
+the episode table is then the same on every machine and every run.
 """
 
 from __future__ import annotations
@@ -25,7 +29,7 @@ from ladev_lib.rollout.executors.base import Executor
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
 from ladev_lib.rollout.plan import EpisodePlan
 from ladev_lib.store import ContentStore
-from ladev_lib.tables import EpisodeRow
+from ladev_lib.tables import EpisodeRow, EpisodeTimingRow
 
 
 @dataclass
@@ -39,6 +43,8 @@ class RolloutSummary:
     statuses: Counter[str] = field(default_factory=Counter)
     errors: Counter[str] = field(default_factory=Counter)
     wall_seconds: float = 0.0
+    timings: list[EpisodeTimingRow] = field(default_factory=list)
+    """One per planned episode, in plan order (the timings table)."""
 
     @property
     def judged(self) -> int:
@@ -141,6 +147,7 @@ def run_rollout(
         if loaded is not None:
             outcomes[key] = loaded
     from_store = len(outcomes)
+    stored = set(outcomes)
     for eid, p in unique.items():
         if eid not in outcomes and p.known_invalid is not None:
             outcomes[eid] = EpisodeOutcome.failed("invalid_scene", p.scene_robot, p.known_invalid)
@@ -173,15 +180,27 @@ def run_rollout(
                 robot=o.robot,
                 status=o.status,
                 success=o.success,
+                success_end=o.success,
+                success_any=o.success_any,
+                first_success_step=o.first_success_step,
                 predicates_json=o.predicates_json(),
                 steps=o.steps,
-                sim_seconds=o.sim_seconds,
-                policy_seconds=o.policy_seconds,
-                total_seconds=o.total_seconds,
                 error=o.error,
                 video_path=_existing(o.video_path, media_base),
                 first_frame_path=_existing(o.first_frame_path, media_base),
                 last_frame_path=_existing(o.last_frame_path, media_base),
+            )
+        )
+        summary.timings.append(
+            EpisodeTimingRow(
+                episode_id=p.job.episode_id,
+                policy=label,
+                steps=o.steps,
+                from_store=p.job.episode_id in stored,
+                sim_seconds=o.sim_seconds,
+                policy_seconds=o.policy_seconds,
+                total_seconds=o.total_seconds,
+                host=o.host,
             )
         )
     summary.wall_seconds = time.perf_counter() - started

@@ -2,10 +2,14 @@
 
     outcome = run_episode(sim, policy, job, media)
 
-Load the scene into the reused simulator, check it is physically valid, then
-step the policy with what it declares it reads (the image at its size only if
-it wants one; proprioception; privileged state only if privileged) until the
-task succeeds, the policy stops, or the task's step limit. Every failure
+Seed every generator (:mod:`ladev_lib.rollout.seeding`), load the scene into
+the reused simulator, check it is physically valid, then step the policy with
+what it declares it reads (the image at its size only if it wants one;
+proprioception; privileged state only if privileged) until the policy stops or
+the task's step limit, or the first success when the job says so
+(``rollout.stop_on_success``; off by default, as in SimplerEnv). Success is
+recorded at every step: at the final step (``success``) and at any step
+(``success_any``, with the first step it held). Every failure
 inside becomes an ``error`` outcome with its reason, never an exception: a
 simulator exception, a policy exception, an action with NaN/inf or the wrong
 shape. The one exception that propagates is a ``ConfigError`` while loading
@@ -16,8 +20,8 @@ a call stuck in C code cannot be interrupted from inside its own process.
 
 from __future__ import annotations
 
-import random
-import sys
+import functools
+import platform
 import time
 import traceback
 from dataclasses import dataclass, field
@@ -30,6 +34,7 @@ from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import EpisodeContext, Policy
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, MediaOptions
 from ladev_lib.rollout.media import write_mp4, write_png
+from ladev_lib.rollout.seeding import seed_episode
 from ladev_lib.rollout.simulator import EpisodeSim
 from ladev_lib.scenes import SceneSpec
 
@@ -63,12 +68,20 @@ def choose_robot(scene_robot: str, policy_robots: tuple[str, ...]) -> str:
 
 
 def seed_everything(seed: int) -> None:
-    """Seed the global generators a policy might use (torch only if already loaded)."""
-    random.seed(seed)
-    np.random.seed(seed % 2**32)
-    torch = sys.modules.get("torch")
-    if torch is not None:
-        torch.manual_seed(seed)
+    """Seed every generator an episode may draw from (see :mod:`ladev_lib.rollout.seeding`)."""
+    seed_episode(seed)
+
+
+@functools.lru_cache(maxsize=1)
+def host_label() -> str:
+    """The machine, for the timings table: hostname and CPU model."""
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            cpu = next((ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name")), cpu)
+    except OSError:
+        pass
+    return f"{platform.node()} ({cpu})"
 
 
 def describe_exception(where: str, exc: BaseException) -> str:
@@ -99,11 +112,12 @@ class _Clock:
     policy: float = 0.0
     started: float = field(default_factory=time.perf_counter)
 
-    def timing(self) -> dict[str, float]:
+    def timing(self) -> dict[str, float | str]:
         return {
             "sim_seconds": round(self.sim, 4),
             "policy_seconds": round(self.policy, 4),
             "total_seconds": round(time.perf_counter() - self.started, 4),
+            "host": host_label(),
         }
 
 
@@ -129,6 +143,7 @@ def run_episode(
         return EpisodeOutcome.failed(status, robot, reason, steps=steps, **clock.timing())  # type: ignore[arg-type]
 
     # -- scene ---------------------------------------------------------------
+    seed_everything(job.seed)  # before anything of the episode draws a random number
     beat.enter("load", 0, lim.setup_timeout_s)
     t = time.perf_counter()
     try:
@@ -156,7 +171,6 @@ def run_episode(
         return outcome
 
     # -- policy --------------------------------------------------------------
-    seed_everything(job.seed)
     beat.enter("policy", 0, lim.step_timeout_s)
     t = time.perf_counter()
     try:
@@ -174,6 +188,7 @@ def run_episode(
     shape = tuple(low.shape)
     predicates: dict[str, bool] = {}
     steps = 0
+    first_success: int | None = None
     for step in range(max_steps):
         beat.enter("sim", step, lim.step_timeout_s)
         t = time.perf_counter()
@@ -208,7 +223,11 @@ def run_episode(
             return failed("error", describe_exception("simulator", exc), steps)
         clock.sim += time.perf_counter() - t
         steps = step + 1
-        if predicates.get("success", False) or out.terminate:
+        if first_success is None and predicates.get("success", False):
+            first_success = steps
+            if job.stop_on_success:
+                break
+        if out.terminate:
             break
 
     t = time.perf_counter()
@@ -223,10 +242,14 @@ def run_episode(
     clock.sim += time.perf_counter() - t
 
     success = bool(predicates.get("success", False))
+    if first_success is None and success:  # zero steps: the initial state already holds
+        first_success = steps
     outcome = EpisodeOutcome.model_validate(
         {
             "status": "success" if success else "failure",
             "success": success,
+            "success_any": first_success is not None,
+            "first_success_step": first_success,
             "predicates": predicates,
             "steps": steps,
             "robot": robot,

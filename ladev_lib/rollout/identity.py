@@ -2,7 +2,7 @@
 
     episode_id = hash(scene spec, instruction text, policy name + config, seed,
                       sim config, robot config, which meshes are installed,
-                      code fingerprint)
+                      code fingerprint, options: trial and stop_on_success)
 
 The code fingerprint (``ladev_lib.fingerprint``, the one mechanism the LLM
 cache and the DVC dependency check use too) hashes the source of the modules an outcome depends on
@@ -81,10 +81,14 @@ def episode_id(
     sim_config: dict[str, Any],
     robot_config: dict[str, Any],
     code: str,
+    options: dict[str, Any] | None = None,
 ) -> str:
-    """The content hash that names an episode in the store and in the table."""
+    """The content hash that names an episode in the store and in the table.
+
+    ``options``: what else decides the outcome (the trial, ``stop_on_success``).
+    """
     return content_key(
-        "episode/v1",
+        "episode/v2",
         spec.model_dump(mode="json"),
         instruction,
         {"name": policy_name, "config": policy_config},
@@ -93,4 +97,5 @@ def episode_id(
         robot_config,
         asset_signature(spec),
         code,
+        options or {},
     )

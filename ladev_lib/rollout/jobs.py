@@ -32,23 +32,28 @@ class EpisodeJob:
     spec_json: str
     instruction: str
     seed: int
+    stop_on_success: bool = False
+    """End the episode at the first step the task holds (SimplerEnv runs to the step limit)."""
 
 
 class EpisodeOutcome(BaseModel):
     """What one episode produced (the episode store's value)."""
 
     model_config = ConfigDict(extra="forbid")
-    VERSION: ClassVar[int] = 1
+    VERSION: ClassVar[int] = 2
 
-    schema_version: Literal[1] = 1
+    schema_version: Literal[2] = 2
     status: EpisodeStatus
-    success: bool | None = Field(description="Null for error and invalid_scene.")
+    success: bool | None = Field(description="Success at the final step; null for error and invalid_scene.")
+    success_any: bool | None = Field(default=None, description="Success at any step; null as above.")
+    first_success_step: int | None = Field(default=None, description="First step (1-based) the task held.")
     predicates: dict[str, bool] = Field(default_factory=dict)
     steps: int = 0
     robot: str
     sim_seconds: float = 0.0
     policy_seconds: float = 0.0
     total_seconds: float = 0.0
+    host: str = Field(default="", description="Machine that ran the episode (for the timings table only).")
     error: str | None = None
     video_path: str | None = None
     first_frame_path: str | None = None

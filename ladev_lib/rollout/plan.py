@@ -1,8 +1,11 @@
 """Plan a policy's episodes from the study's tables.
 
 Each compiled scene (status ``ok``) is rolled out with its basic instruction,
-and, for scenes of the ``instruction`` factor, with its selected paraphrase
-(``selected`` in instructions.parquet). The episode's study metadata (factor,
+for scenes of the ``instruction`` factor with its selected paraphrase
+(``selected`` in instructions.parquet), and with its control instructions
+(kind ``control``) where the paraphrase stage wrote them. Each of these runs
+``trials`` times (:class:`TrialPlan`), trial ``t`` with the seed
+``trial_seed(scene seed, t)``. The episode's study metadata (factor,
 level, object set, ...) comes from scenes.parquet; for the instruction factor
 the level is the instruction's kind. A scene the compile stage already found
 physically invalid becomes an ``invalid_scene`` row without simulating it.
@@ -20,6 +23,7 @@ from ladev_lib.language.instructions import basic_instruction
 from ladev_lib.rollout.identity import episode_id
 from ladev_lib.rollout.jobs import EpisodeJob
 from ladev_lib.scenes import SceneSpec
+from ladev_lib.study.seeds import trial_seed
 
 
 @dataclass(frozen=True)
@@ -34,9 +38,27 @@ class EpisodePlan:
     """The compile stage's physical-validity verdict, when it found the scene invalid."""
 
     @property
-    def sort_key(self) -> tuple[str, int, str]:
-        kind_order = 0 if self.meta["instruction_kind"] == "basic" else 1
-        return (str(self.meta["scene_id"]), kind_order, str(self.meta["instruction_id"]))
+    def sort_key(self) -> tuple[str, int, int, str]:
+        kind_order = {"basic": 0, "paraphrase": 1}.get(str(self.meta["instruction_kind"]), 2)
+        return (
+            str(self.meta["scene_id"]), int(self.meta.get("trial", 0)), kind_order,
+            str(self.meta["instruction_id"]),
+        )
+
+
+@dataclass(frozen=True)
+class TrialPlan:
+    """How many times each scene's instructions run, and how episodes end."""
+
+    trials_per_scene: int = 1
+    trial_factors: tuple[str, ...] | None = None
+    """Factors whose scenes get ``trials_per_scene`` trials (the others one); None: all."""
+    stop_on_success: bool = False
+
+    def trials_for(self, factor: str) -> int:
+        if self.trial_factors is None or factor in self.trial_factors:
+            return self.trials_per_scene
+        return 1
 
 
 @dataclass(frozen=True)
@@ -96,8 +118,10 @@ def plan_episodes(
     policy: PolicyIdentity,
     sim_config: dict[str, Any],
     robot_config: dict[str, Any],
+    trials: TrialPlan | None = None,
 ) -> list[EpisodePlan]:
-    """Every episode of ``policy`` the tables call for, sorted by scene and instruction."""
+    """Every episode of ``policy`` the tables call for, sorted by scene, trial and instruction."""
+    trials = trials or TrialPlan()
     design = {r["scene_id"]: r for r in scenes.iter_rows(named=True)} if scenes is not None else {}
     by_scene: dict[str, list[dict[str, Any]]] = {}
     if instructions is not None:
@@ -122,34 +146,43 @@ def plan_episodes(
             chosen = [{"instruction_id": f"{scene_id}/basic", "kind": "basic", "text": default_instruction(spec)}]
         if meta_scene["factor"] == "instruction":
             chosen += [r for r in texts if r["kind"] == "paraphrase" and r.get("selected")]
+        chosen += [r for r in texts if r["kind"] == "control" and r.get("selected")]
         invalid = None
         if row.get("validity") == "invalid":
             invalid = row.get("validity_reason") or "invalid scene (compile stage)"
-        for ins in chosen:
-            eid = episode_id(
-                spec=spec,
-                instruction=ins["text"],
-                policy_name=policy.name,
-                policy_config=policy.config,
-                seed=spec.seed,
-                sim_config=sim_config,
-                robot_config=robot_config,
-                code=policy.code,
-            )
-            meta = {
-                **meta_scene,
-                "study": meta_scene.get("study") or study,
-                "episode_id": eid,
-                "scene_id": scene_id,
-                "instruction_id": ins["instruction_id"],
-                "policy": policy.label,
-                "instruction_kind": ins["kind"],
-                "instruction": ins["text"],
-                "seed": spec.seed,
-            }
-            if meta_scene["factor"] == "instruction":
-                meta["level"] = ins["kind"]
-            job = EpisodeJob(episode_id=eid, spec_json=row["spec_json"], instruction=ins["text"], seed=spec.seed)
-            plans.append(EpisodePlan(job, meta, spec.robot, invalid))
+        for trial in range(trials.trials_for(str(meta_scene["factor"]))):
+            seed = trial_seed(spec.seed, trial)
+            for ins in chosen:
+                eid = episode_id(
+                    spec=spec,
+                    instruction=ins["text"],
+                    policy_name=policy.name,
+                    policy_config=policy.config,
+                    seed=seed,
+                    sim_config=sim_config,
+                    robot_config=robot_config,
+                    code=policy.code,
+                    options={"trial": trial, "stop_on_success": trials.stop_on_success},
+                )
+                meta = {
+                    **meta_scene,
+                    "study": meta_scene.get("study") or study,
+                    "episode_id": eid,
+                    "scene_id": scene_id,
+                    "instruction_id": ins["instruction_id"],
+                    "policy": policy.label,
+                    "instruction_kind": ins["kind"],
+                    "instruction": ins["text"],
+                    "seed": seed,
+                    "trial": trial,
+                    "control": ins.get("control"),
+                }
+                if meta_scene["factor"] == "instruction":
+                    meta["level"] = ins["kind"]
+                job = EpisodeJob(
+                    episode_id=eid, spec_json=row["spec_json"], instruction=ins["text"], seed=seed,
+                    stop_on_success=trials.stop_on_success,
+                )
+                plans.append(EpisodePlan(job, meta, spec.robot, invalid))
     plans.sort(key=lambda p: p.sort_key)
     return plans

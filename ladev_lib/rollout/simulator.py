@@ -2,8 +2,9 @@
 
 :class:`EpisodeSim` is the small surface the loop needs; :class:`ManiSkillSim`
 implements it on the LADEV ManiSkill env (``ladev_lib.sim``), reusing one env
-across episodes (``reset(options={"spec": ...})`` rebuilds the scene; the first
-rendered frame of a process costs seconds, later ones milliseconds). Tests use
+across episodes (``reset(options={"spec": ..., "reconfigure": True})`` rebuilds
+the scene every episode, so no episode inherits another's physics state; the
+first rendered frame of a process costs seconds, later ones milliseconds). Tests use
 a double that implements the same protocol.
 """
 
@@ -102,7 +103,11 @@ class ManiSkillSim:
                 image_size=self.setup.image_size,
                 **({} if self.setup.prefer_meshes else {"prefer_meshes": False}),
             )
-        self._env.reset(seed=seed, options={"spec": spec.model_dump(mode="json")})
+        # Rebuild the scene even when its layout matches the last episode's: a reused
+        # physics scene keeps state (contacts, solver warm starts) from that episode, and
+        # which episode came before depends on how the executor spread the work, so the
+        # outcome would too.
+        self._env.reset(seed=seed, options={"spec": spec.model_dump(mode="json"), "reconfigure": True})
         self._spec = spec
 
     def action_bounds(self) -> tuple[np.ndarray, np.ndarray]:

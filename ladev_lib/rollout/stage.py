@@ -5,8 +5,11 @@
 
 ``cfg`` is the composed configuration (``params.yaml``); every path in it is
 relative to ``root``. The per-policy outputs are the table
-``paths.episodes_dir/<label>.parquet``, media under ``paths.media_dir/<label>/``
-and the persistent store ``paths.episode_store_dir/<label>/``.
+``paths.episodes_dir/<label>.parquet``, its timings
+``paths.timings_dir/<label>.parquet`` (kept apart: they differ on every run),
+media under ``paths.media_dir/<label>/`` and the persistent store
+``paths.episode_store_dir/<label>/``. ``study.trials_per_scene`` and
+``study.trial_factors`` say how many times each scene runs.
 """
 
 from __future__ import annotations
@@ -26,13 +29,14 @@ from ladev_lib.rollout.engine import RolloutSummary, run_rollout
 from ladev_lib.rollout.executors import make_executor
 from ladev_lib.rollout.identity import code_fingerprint
 from ladev_lib.rollout.jobs import MediaOptions, WorkerSpec
-from ladev_lib.rollout.plan import PolicyIdentity, plan_episodes
+from ladev_lib.rollout.plan import PolicyIdentity, TrialPlan, plan_episodes
 from ladev_lib.rollout.simulator import EpisodeSim, SimSetup
 from ladev_lib.sim.config import RobotConfig, SimConfig
 from ladev_lib.store import ContentStore
 from ladev_lib.tables import (
     CompiledSceneRow,
     EpisodeRow,
+    EpisodeTimingRow,
     InstructionRow,
     SceneDesignRow,
     read_table,
@@ -45,6 +49,7 @@ class RolloutStageResult:
     summary: RolloutSummary
     table: Path
     max_error_rate: float
+    timings: Path | None = None
 
     @property
     def exit_code(self) -> int:
@@ -69,6 +74,22 @@ def _path(cfg: dict[str, Any], key: str, root: Path) -> Path:
     if key not in paths:
         raise ConfigError(f"paths.{key} is not set in the configuration")
     return root / str(paths[key])
+
+
+def trial_plan(cfg: dict[str, Any], rollout: RolloutConfig) -> TrialPlan:
+    """Trials from the ``study`` section (1 per scene when it says nothing)."""
+    study = cfg.get("study") or {}
+    trials = study.get("trials_per_scene", 1)
+    factors = study.get("trial_factors")
+    if not isinstance(trials, int) or isinstance(trials, bool) or trials < 1:
+        raise ConfigError(f"study.trials_per_scene: a whole number >= 1, got {trials!r}")
+    if factors is not None and not isinstance(factors, list):
+        raise ConfigError(f"study.trial_factors: a list of factors or null, got {factors!r}")
+    return TrialPlan(
+        trials_per_scene=trials,
+        trial_factors=tuple(str(f) for f in factors) if factors is not None else None,
+        stop_on_success=rollout.stop_on_success,
+    )
 
 
 def rollout_stage(
@@ -107,6 +128,7 @@ def rollout_stage(
         policy=identity,
         sim_config=sim_config,
         robot_config=robot_config,
+        trials=trial_plan(cfg, rollout),
     )
 
     media_rel = Path(str((cfg.get("paths") or {}).get("media_dir", "data/media"))) / label
@@ -138,4 +160,9 @@ def rollout_stage(
     finally:
         store.close()
     table = write_table(rows, _path(cfg, "episodes_dir", root) / f"{label}.parquet", EpisodeRow)
-    return RolloutStageResult(summary, table, rollout.max_error_rate)
+    timings = None
+    if "timings_dir" in (cfg.get("paths") or {}):
+        timings = write_table(
+            summary.timings, _path(cfg, "timings_dir", root) / f"{label}.parquet", EpisodeTimingRow
+        )
+    return RolloutStageResult(summary, table, rollout.max_error_rate, timings)

@@ -12,6 +12,16 @@ scenes per level:
 - ``object_set``: the level is the set (simpler | ycb).
 - ``environment``: the level is default | lighting | camera.
 
+Measurement options (see the README's Measurement section):
+
+- ``trials_per_scene``: each (scene, instruction) is run this many times, each
+  trial with its own seed for everything the simulator and the policy
+  randomise; ``trial_factors`` limits the extra trials to the scenes of some
+  factors (null: every scene).
+- ``controls``: control instructions run on the same scenes (``empty``,
+  ``unrelated``, ``other_object``: the same task on another object), on the
+  scenes of ``control_factors`` (null: every scene).
+
 Factors other than ``num_objects`` draw each scene's count from ``num_objects``
 (a number, or a ``[low, high]`` range) with the scene's seed. A scene's id is
 ``<task>-<factor>-<level>-<index>`` and its seed is derived from the study
@@ -30,6 +40,7 @@ from ladev_lib.scenes.spec import SceneBounds, TaskType
 from ladev_lib.study.seeds import derive_seed
 
 FactorName = Literal["num_objects", "instruction", "object_set", "environment"]
+ControlName = Literal["empty", "unrelated", "other_object"]
 ObjectSetName = Literal["simpler", "ycb"]
 INSTRUCTION_LEVEL = "basic+paraphrase"
 _LEVELS: dict[str, set[str]] = {
@@ -66,9 +77,38 @@ class StudyConfig(BaseModel):
     batch_size: int = Field(default=10, ge=1, le=100, description="Scene descriptions asked per LLM call.")
     paraphrases_per_instruction: int = Field(default=10, ge=1)
     bounds: SceneBounds = SceneBounds()
+    trials_per_scene: int = Field(
+        default=1, ge=1, le=1000,
+        description="Runs of each (scene, instruction), each trial with its own seed.",
+    )
+    trial_factors: list[FactorName] | None = Field(
+        default=None,
+        description="Factors whose scenes get trials_per_scene trials (the others one); null: all.",
+    )
+    controls: list[ControlName] = Field(
+        default_factory=list,
+        description="Control instructions run on the same scenes: empty | unrelated | other_object.",
+    )
+    control_factors: list[FactorName] | None = Field(
+        default=None, description="Factors whose scenes get the controls; null: all."
+    )
+
+    def trials_for(self, factor: str) -> int:
+        """Trials of a scene of ``factor`` ('custom' for a user's own spec: as null factors)."""
+        if self.trial_factors is None or factor in self.trial_factors:
+            return self.trials_per_scene
+        return 1
+
+    def controls_for(self, factor: str) -> list[str]:
+        """The control instructions scenes of ``factor`` get."""
+        if self.control_factors is None or factor in self.control_factors:
+            return list(self.controls)
+        return []
 
     @model_validator(mode="after")
     def _check_levels(self) -> StudyConfig:
+        if len(set(self.controls)) != len(self.controls):
+            raise ValueError(f"controls: each at most once, got {self.controls}")
         max_count = self.bounds.max_objects - 1  # room for the target
         for name, factor in self.factors.items():
             if name == "num_objects":

@@ -27,7 +27,14 @@ import yaml
 
 from ladev_lib.catalog import load_catalog
 from ladev_lib.scenes.spec import parse_scene_spec
-from ladev_lib.tables import CompiledSceneRow, EpisodeRow, InstructionRow, read_table, write_table
+from ladev_lib.tables import (
+    CompiledSceneRow,
+    EpisodeRow,
+    EpisodeTimingRow,
+    InstructionRow,
+    read_table,
+    write_table,
+)
 
 pytestmark = pytest.mark.sim
 REPO = Path(__file__).resolve().parents[2]
@@ -131,4 +138,6 @@ def test_core_rollout_against_a_served_lerobot_policy(served: str, lerobot_pytho
     assert row["status"] in ("success", "failure"), row["error"]
     assert row["robot"] == "panda" and row["steps"] == STEPS
     assert row["instruction"] == "lift the red can off the table"
-    assert "success" in json.loads(row["predicates_json"]) and row["policy_seconds"] > 0
+    assert "success" in json.loads(row["predicates_json"])
+    timing = read_table(data / "timings/lerobot_act.parquet", EpisodeTimingRow).to_dicts()
+    assert [t["episode_id"] for t in timing] == [row["episode_id"]] and timing[0]["policy_seconds"] > 0

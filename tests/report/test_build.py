@@ -95,7 +95,10 @@ def test_report_files_metrics_and_html(study, full_report):
     assert metrics["success_rate/oracle"] == round(judged.get_column("success").mean(), 4)
     assert metrics["compile_ok_rate"] == round(1 - 4 / inputs.compiled.height, 4)
     assert metrics["paraphrase_valid_rate"] == 0.25  # 1 valid of 4 candidates per scene
-    assert all("/" not in k or k.startswith("success_rate/") for k in metrics)
+    prefixes = {"success_rate", "success_rate_end", "success_rate_any", "control", "flipping_scenes",
+                "repeated_scenes"}
+    assert all("/" not in k or k.split("/")[0] in prefixes for k in metrics)
+    assert metrics["success_rate_end/oracle"] == metrics["success_rate/oracle"]  # report.success=end
     assert all(isinstance(v, (int, float)) or v is None for v in metrics.values())
 
     page = Collector()
@@ -129,8 +132,8 @@ def test_options_change_outputs_and_stale_files_go(study):
     reports, _ = build(root, inputs, "reports_opts", formats=["md"], figures=False, html=False,
                        gallery={"size": 0})
     assert sorted(p.name for p in (reports / "tables").iterdir()) == [
-        "comparisons.md", "table1_num_objects.md", "table2_instruction.md", "table3_object_set.md",
-        "table4_environment.md",
+        "comparisons.md", "measurement.md", "table1_num_objects.md", "table2_instruction.md",
+        "table3_object_set.md", "table4_environment.md",
     ]
     assert not any((reports / "figures").iterdir())
 

@@ -117,8 +117,10 @@ def test_summary_prints_report_and_headline_numbers(ran_repo, monkeypatch):
     metrics = json.loads((repo / "reports/metrics.json").read_text())
     assert "Study: smoke" in result.output and "report.html" in result.output
     assert f"{100 * metrics['success_rate/oracle']:.1f}%" in result.output
-    lines = [ln for ln in result.output.splitlines() if ln.startswith("Success rate")]
-    assert lines and lines[0].split()[2:] == ["all", "pick_up", "move_near", "put_on", "put_in"]
+    lines = [ln for ln in result.output.splitlines() if ln.startswith("Success at")]
+    assert [ln.split("  ")[0].rstrip(" *") for ln in lines] == ["Success at end", "Success at any step"]
+    assert all(ln.split()[-5:] == ["all", "pick_up", "move_near", "put_on", "put_in"] for ln in lines)
+    assert "report.success=end" in result.output
     as_json = CliRunner().invoke(cli, ["summary", "--json"])
     assert json.loads(as_json.output) == metrics
 

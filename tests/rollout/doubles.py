@@ -24,6 +24,7 @@ from __future__ import annotations
 import ctypes
 import hashlib
 import os
+import random
 import signal
 import time
 from pathlib import Path
@@ -188,3 +189,19 @@ class ScriptedToyPolicy(Policy):
 
 def make_scripted_policy(**config: object) -> ScriptedToyPolicy:
     return ScriptedToyPolicy(**config)  # type: ignore[arg-type]
+
+
+class NoisyToyPolicy(ScriptedToyPolicy):
+    """Heads for the source through noise drawn from Python's ``random``, NumPy's global
+    generator and the C library's ``rand()``: its outcomes repeat only if the engine seeds
+    all three per episode."""
+
+    def step(self, obs: Observation) -> PolicyStep:
+        base = np.asarray(super().step(obs).action, dtype=float)
+        libc_draw = (ctypes.CDLL(None).rand() % 1000) / 1000.0 - 0.5
+        noise = np.array([random.uniform(-1, 1), np.random.uniform(-1, 1)]) + libc_draw
+        return PolicyStep(action=np.clip(0.6 * base + 0.9 * noise, -1, 1))
+
+
+def make_noisy_policy(**config: object) -> NoisyToyPolicy:
+    return NoisyToyPolicy(**config)  # type: ignore[arg-type]

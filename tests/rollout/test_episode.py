@@ -23,8 +23,8 @@ def toy_sim(image_size=(32, 24)):
     return ToySim(SimSetup({}, {}, "panda", "toy_delta_xy", image_size))
 
 
-def job(spec, instruction="pick it up", seed=0):
-    return EpisodeJob("e1", spec.to_json(), instruction, seed)
+def job(spec, instruction="pick it up", seed=0, stop_on_success=False):
+    return EpisodeJob("e1", spec.to_json(), instruction, seed, stop_on_success)
 
 
 class RecordingPolicy(Policy):
@@ -44,12 +44,40 @@ class RecordingPolicy(Policy):
         return PolicyStep(np.zeros(2), terminate=stop)
 
 
-def test_success_ends_the_episode(spec):
+class LeavingPolicy(ScriptedToyPolicy):
+    """Reaches the goal, then drives away from it after ``leave_at`` steps."""
+
+    def __init__(self, leave_at: int) -> None:
+        super().__init__()
+        self.leave_at = leave_at
+
+    def step(self, obs):
+        if obs.step >= self.leave_at:
+            return PolicyStep(np.ones(2))
+        return super().step(obs)
+
+
+def test_episode_runs_to_the_limit_and_records_the_first_success(spec):
     out = run_episode(toy_sim(), ScriptedToyPolicy(), job(spec))
-    assert out.status == "success" and out.success is True
+    assert out.status == "success" and out.success is True and out.success_any is True
     assert out.predicates == {"reached": True, "success": True}
-    assert 0 < out.steps < MAX_STEPS
+    assert out.steps == MAX_STEPS  # SimplerEnv's protocol: success does not end the episode
+    assert 0 < out.first_success_step < MAX_STEPS
     assert out.total_seconds >= out.sim_seconds + out.policy_seconds - 1e-3
+
+
+def test_stop_on_success_ends_at_the_first_success(spec):
+    out = run_episode(toy_sim(), ScriptedToyPolicy(), job(spec, stop_on_success=True))
+    full = run_episode(toy_sim(), ScriptedToyPolicy(), job(spec))
+    assert out.success is True and out.steps == out.first_success_step == full.first_success_step
+
+
+def test_success_lost_before_the_end_counts_at_any_step_only(spec):
+    out = run_episode(toy_sim(), LeavingPolicy(leave_at=30), job(spec))
+    assert (out.status, out.success, out.success_any) == ("failure", False, True)
+    assert out.first_success_step is not None and out.first_success_step <= 30
+    never = run_episode(toy_sim(), ScriptedToyPolicy(gain=0.0), job(spec))
+    assert (never.success, never.success_any, never.first_success_step) == (False, False, None)
 
 
 def test_step_limit_is_a_failure(spec):
