@@ -23,6 +23,7 @@ import polars as pl  # noqa: E402
 from matplotlib.artist import Artist  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
+from ladev_lib.arrays import Array  # noqa: E402
 from ladev_lib.report.cells import AVERAGE_LEVEL  # noqa: E402
 from ladev_lib.report.layout import TableSpec, task_label  # noqa: E402
 
@@ -34,7 +35,7 @@ def _colors(n: int) -> list[tuple[float, float, float, float]]:
     return [cmap(i % cmap.N) for i in range(n)]
 
 
-def _series(frame: pl.DataFrame, policy: str, task: str, levels: Sequence[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _series(frame: pl.DataFrame, policy: str, task: str, levels: Sequence[str]) -> tuple[Array, Array, Array]:
     """Rate and asymmetric error-bar lengths (NaN where a cell is empty), in percent."""
     part = frame.filter((pl.col("policy") == policy) & (pl.col("task") == task))
     by_level = {r["level"]: r for r in part.iter_rows(named=True)}

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import polars as pl
 
+from ladev_lib.arrays import Array
 from ladev_lib.tables import EpisodeRow, polars_schema
 
 TASKS = ("pick_up", "move_near", "put_on", "put_in")
@@ -55,7 +56,7 @@ class PairedCounts:
     neither: int = 0
 
 
-def _finish(columns: Mapping[str, Sequence[object] | np.ndarray], study: str) -> pl.DataFrame:
+def _finish(columns: Mapping[str, Sequence[object] | Array], study: str) -> pl.DataFrame:
     """Fill derived columns and cast to the episode schema."""
     df = pl.DataFrame(columns)
     n = df.height

@@ -30,6 +30,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import EpisodeContext, Policy
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, MediaOptions
@@ -92,7 +93,7 @@ def describe_exception(where: str, exc: BaseException) -> str:
     return f"{where}: {type(exc).__name__}: {text}{at}"[:500]
 
 
-def check_action(action: object, shape: tuple[int, ...], step: int) -> tuple[np.ndarray | None, str | None]:
+def check_action(action: object, shape: tuple[int, ...], step: int) -> tuple[Array | None, str | None]:
     """The action as float32 of the right shape, or the reason it is unusable."""
     try:
         arr = np.asarray(action, dtype=np.float32)
@@ -184,7 +185,7 @@ def run_episode(
     wants_image = info.image_size is not None
     record = media is not None and media.needs_camera
     keep_all = media is not None and media.video != "none"
-    frames: list[np.ndarray] = []
+    frames: list[Array] = []
     shape = tuple(low.shape)
     predicates: dict[str, bool] = {}
     steps = 0
@@ -263,7 +264,7 @@ def run_episode(
 
 
 def _save_media(
-    outcome: EpisodeOutcome, job: EpisodeJob, media: MediaOptions, frames: list[np.ndarray]
+    outcome: EpisodeOutcome, job: EpisodeJob, media: MediaOptions, frames: list[Array]
 ) -> EpisodeOutcome:
     root = Path(media.root)
     update: dict[str, str] = {}

@@ -7,8 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 
-def write_png(path: Path, image: np.ndarray) -> None:
+
+def write_png(path: Path, image: Array) -> None:
     from PIL import Image
 
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -17,7 +19,7 @@ def write_png(path: Path, image: np.ndarray) -> None:
     tmp.replace(path)
 
 
-def write_mp4(path: Path, frames: Sequence[np.ndarray], fps: int) -> None:
+def write_mp4(path: Path, frames: Sequence[Array], fps: int) -> None:
     import imageio.v2 as imageio
 
     path.parent.mkdir(parents=True, exist_ok=True)

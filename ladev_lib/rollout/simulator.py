@@ -15,6 +15,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.policies.base import Observation, PrivilegedState
 from ladev_lib.scenes import SceneSpec
 
@@ -39,7 +40,7 @@ class EpisodeSim(Protocol):
     def load(self, spec: SceneSpec, seed: int) -> None:
         """Build (or rebuild) the scene of ``spec`` and reset it with ``seed``."""
 
-    def action_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def action_bounds(self) -> tuple[Array, Array]:
         """(low, high) of the action space, each of the action's shape."""
 
     def invalid_reason(self) -> str | None:
@@ -51,13 +52,13 @@ class EpisodeSim(Protocol):
     def observe(self, *, image: bool, privileged: bool) -> Observation:
         """The current observation: the image and privileged state only when asked."""
 
-    def step(self, action: np.ndarray) -> dict[str, bool]:
+    def step(self, action: Array) -> dict[str, bool]:
         """Apply one action; the task's predicates and ``success`` after it."""
 
     def evaluate(self) -> dict[str, bool]:
         """The task's predicates and ``success`` now."""
 
-    def frame(self) -> np.ndarray:
+    def frame(self) -> Array:
         """(H, W, 3) uint8 from the policy camera, for videos and frame files."""
 
     def close(self) -> None:
@@ -110,7 +111,7 @@ class ManiSkillSim:
         self._env.reset(seed=seed, options={"spec": spec.model_dump(mode="json"), "reconfigure": True})
         self._spec = spec
 
-    def action_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def action_bounds(self) -> tuple[Array, Array]:
         space = self.env.action_space
         return np.asarray(space.low, dtype=np.float64), np.asarray(space.high, dtype=np.float64)
 
@@ -146,14 +147,14 @@ class ManiSkillSim:
             privileged=priv,
         )
 
-    def step(self, action: np.ndarray) -> dict[str, bool]:
+    def step(self, action: Array) -> dict[str, bool]:
         _obs, _reward, _terminated, _truncated, info = self.env.step(action)
         return to_bool_dict(info)
 
     def evaluate(self) -> dict[str, bool]:
         return to_bool_dict(self.env.unwrapped.evaluate())
 
-    def frame(self) -> np.ndarray:
+    def frame(self) -> Array:
         return np.asarray(self.env.unwrapped.policy_image())
 
     def close(self) -> None:
