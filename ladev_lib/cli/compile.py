@@ -23,7 +23,7 @@ from tqdm import tqdm
 
 from ladev_lib.scenes.spec import Robot, TaskType
 from ladev_lib.scenes.text_to_scene import CompiledScene, SceneText
-from ladev_lib.study.seeds import derive_seed
+from ladev_lib.seeding import derive_seed
 
 
 class DescriptionLine(BaseModel):

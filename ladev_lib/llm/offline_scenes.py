@@ -23,12 +23,12 @@ from ladev_lib.llm.grammar import RULE_MODULES as GRAMMAR_MODULES
 from ladev_lib.llm.grammar import Vocabulary, read_description
 from ladev_lib.llm.scene_writer import write_scene
 from ladev_lib.scenes.spec import SceneBounds
-from ladev_lib.study.seeds import derive_seed
+from ladev_lib.seeding import derive_seed
 
 RULE_MODULES = (
     *GRAMMAR_MODULES,
     "ladev_lib.llm.scene_writer",
-    "ladev_lib.study.seeds",
+    "ladev_lib.seeding",
     "ladev_lib.scenes.sampling",
     "ladev_lib.scenes.placement",
 )

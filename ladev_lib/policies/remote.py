@@ -35,7 +35,7 @@ from websockets.sync.client import ClientConnection, connect
 
 from ladev_lib.arrays import Array
 from ladev_lib.errors import ConfigError, LadevError
-from ladev_lib.policies.base import Observation, Policy, PolicyInfo, PolicyStep
+from ladev_lib.policies.base import EpisodeContext, Observation, Policy, PolicyInfo, PolicyStep
 from ladev_lib.serving.codec import PayloadError, packb, str_keys, unpackb
 from ladev_lib.serving.protocol import SERVER_KIND, WireKeys, get_path, info_from_wire, set_path
 
@@ -93,6 +93,7 @@ class RemotePolicy(Policy):
         self._chunk: deque[Array] = deque()
         self._instruction: str | None = None
         self._new_episode = False
+        self._seed: int | None = None
         self.server_metadata: dict[str, Any] = {}
         self._connect()
         self.keys = self.config.keys or self._announced_keys()
@@ -260,6 +261,9 @@ class RemotePolicy(Policy):
 
     # ------------------------------------------------------------------ Policy
 
+    def begin_episode(self, ctx: EpisodeContext) -> None:
+        self._seed = ctx.seed
+
     def reset(self, instruction: str) -> None:
         self._instruction = instruction
         self._new_episode = True
@@ -280,6 +284,8 @@ class RemotePolicy(Policy):
             set_path(message, keys.state, np.asarray(obs.proprio, dtype=np.float32))
         if keys.reset is not None and self._new_episode:
             set_path(message, keys.reset, True)
+        if keys.seed is not None and self._new_episode and self._seed is not None:
+            set_path(message, keys.seed, int(self._seed))
         return message
 
     def _prepare_image(self, image: Array) -> Array:

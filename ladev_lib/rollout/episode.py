@@ -35,9 +35,9 @@ from ladev_lib.errors import ConfigError
 from ladev_lib.policies.base import EpisodeContext, Policy
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, MediaOptions
 from ladev_lib.rollout.media import write_mp4, write_png
-from ladev_lib.rollout.seeding import seed_episode
 from ladev_lib.rollout.simulator import EpisodeSim
 from ladev_lib.scenes import SceneSpec
+from ladev_lib.seeding import seed_episode
 
 PHASES: tuple[str, ...] = ("idle", "setup", "load", "policy", "sim", "media")
 

@@ -23,7 +23,7 @@ from ladev_lib.language.instructions import basic_instruction
 from ladev_lib.rollout.identity import episode_id
 from ladev_lib.rollout.jobs import EpisodeJob
 from ladev_lib.scenes import SceneSpec
-from ladev_lib.study.seeds import trial_seed
+from ladev_lib.seeding import trial_seed
 
 
 @dataclass(frozen=True)

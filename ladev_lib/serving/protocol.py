@@ -46,6 +46,10 @@ class WireKeys(BaseModel):
     """Flag set on an episode's first request (LADEV's extension); None: never sent.
     LADEV's server also starts an episode on a connection's first request and
     when the prompt changes, so openpi clients work without it."""
+    seed: str | None = "seed"
+    """The episode's seed, on its first request (LADEV's extension); None: never sent.
+    LADEV's server seeds its process's generators (Python, NumPy, torch, the C
+    library, OMPL) from it before the policy starts the episode."""
     action: str = "actions"
     terminate: str | None = "terminate"
     """The policy's stop flag in replies; None: the server has none."""

@@ -41,6 +41,7 @@ from websockets.http11 import Request, Response
 
 import ladev_lib
 from ladev_lib.policies.base import Observation, Policy
+from ladev_lib.seeding import seed_episode
 from ladev_lib.serving.codec import PayloadError, packb, str_keys, unpackb
 from ladev_lib.serving.protocol import PROTOCOL, SERVER_KIND, WireKeys, get_path, info_to_wire
 
@@ -173,6 +174,11 @@ class PolicyServer:
             raise RequestError(f"the request needs the instruction as a string at {keys.prompt!r}")
         wants_reset = keys.reset is not None and bool(get_path(request, keys.reset))
         if wants_reset or session.prompt is None or prompt != session.prompt:
+            seed = get_path(request, keys.seed) if keys.seed is not None else None
+            if seed is not None:
+                if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
+                    raise RequestError(f"{keys.seed!r} must be an integer, got {seed!r}")
+                seed_episode(int(seed))
             self.policy.reset(prompt)
             session.prompt, session.step = prompt, 0
         image = get_path(request, keys.image)

@@ -37,7 +37,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from ladev_lib.scenes.spec import SceneBounds, TaskType
-from ladev_lib.study.seeds import derive_seed
+from ladev_lib.seeding import derive_seed
 
 FactorName = Literal["num_objects", "instruction", "object_set", "environment"]
 ControlName = Literal["empty", "unrelated", "other_object"]

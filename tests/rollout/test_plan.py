@@ -57,7 +57,7 @@ def test_ids_depend_on_the_policy_config(tmp_path):
 
 def test_trials_get_their_own_seeds_and_ids_and_controls_run_with_them(tmp_path):
     from ladev_lib.rollout.plan import TrialPlan
-    from ladev_lib.study.seeds import trial_seed
+    from ladev_lib.seeding import trial_seed
     from ladev_lib.tables import write_table
 
     write_study(tmp_path, [

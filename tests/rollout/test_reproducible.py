@@ -17,7 +17,7 @@ import pytest
 
 from ladev_lib.language.evaluation import load_labelled_pairs
 from ladev_lib.language.validator import ParaphraseValidator, resolve_precision
-from ladev_lib.rollout.seeding import seed_episode
+from ladev_lib.seeding import seed_episode
 from ladev_lib.tables import EpisodeTimingRow, read_table
 from tests.rollout.conftest import TIMING_COLUMNS, read_episodes, write_study
 

@@ -13,7 +13,7 @@ from websockets.sync.client import connect
 
 from ladev_lib.errors import ConfigError
 from ladev_lib.policies import make_policy
-from ladev_lib.policies.base import Observation
+from ladev_lib.policies.base import Observation, PolicyStep
 from ladev_lib.policies.remote import RemotePolicy, RemotePolicyError, resize_with_pad
 from ladev_lib.serving.codec import packb, unpackb
 from tests.serving.conftest import serve_in_thread
@@ -299,3 +299,33 @@ def test_plain_http_server_is_not_a_policy_server() -> None:
             RemotePolicy(url=f"ws://127.0.0.1:{httpd.server_port}", wait_for_server_s=1)
     finally:
         httpd.shutdown()
+
+
+class _Sampling(ScriptedPolicy):
+    """Draws its action from NumPy's global generator, as sampling policies do."""
+
+    def step(self, obs: Observation) -> PolicyStep:
+        return PolicyStep(action=np.random.uniform(-1, 1, size=7).astype(np.float32))
+
+
+def test_the_episode_seed_reaches_the_server_and_seeds_its_generators() -> None:
+    from ladev_lib.policies.base import EpisodeContext
+
+    def episode(policy: RemotePolicy, seed: int) -> list[float]:
+        policy.begin_episode(EpisodeContext(seed=seed, robot="widowx",
+                                            action_low=-np.ones(7), action_high=np.ones(7)))
+        policy.reset("put the spoon on the towel")
+        return [float(v) for _ in range(2) for v in policy.step(_obs()).action]
+
+    with (
+        serve_in_thread(_Sampling()) as (url, _),
+        RemotePolicy(url=url, wait_for_server_s=5) as policy,
+    ):
+        first, other, again = episode(policy, 7), episode(policy, 8), episode(policy, 7)
+    assert first == again and first != other
+    # Without a seed key the server leaves its generators alone.
+    with (
+        serve_in_thread(_Sampling()) as (url, _),
+        RemotePolicy(url=url, wait_for_server_s=5, keys={"seed": None}) as policy,
+    ):
+        assert episode(policy, 7) != episode(policy, 7)

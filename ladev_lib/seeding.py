@@ -1,6 +1,11 @@
-"""Seed every random generator an episode may draw from, so that reruns match.
+"""Seeds: derived from names, and applied to every random generator an episode may draw from.
 
-    seed_episode(job.seed)      # before the scene is loaded and the policy reset
+    seed = derive_seed(study_seed, scene_id)   # a scene's seed never changes when its study grows
+    seed_episode(job.seed)                      # before the scene is loaded and the policy reset
+
+The episode loop seeds here before each episode, and so does the policy server
+when a client starts an episode with a seed (a served policy draws in its own
+process).
 
 An episode's outcome must not depend on the process it runs in, on which
 episodes that process ran before, or on the clock. What can draw random
@@ -23,6 +28,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import functools
+import hashlib
 import os
 import random
 import sys
@@ -31,7 +37,20 @@ from pathlib import Path
 
 import numpy as np
 
-from ladev_lib.study.seeds import derive_seed
+
+def derive_seed(base: int, key: str) -> int:
+    """A non-negative 31-bit seed from a base seed and a key (e.g. a scene id)."""
+    digest = hashlib.sha256(f"{base}:{key}".encode()).digest()
+    return int.from_bytes(digest[:4], "big") & 0x7FFFFFFF
+
+
+def trial_seed(scene_seed: int, trial: int) -> int:
+    """The seed of trial ``trial`` of a scene: the scene's own seed for trial 0 (so a study with
+    one trial per scene keeps its seeds), a derived one for the others."""
+    if trial < 0:
+        raise ValueError(f"trial must be >= 0, got {trial}")
+    return scene_seed if trial == 0 else derive_seed(scene_seed, f"trial:{trial}")
+
 
 OMPL_SET_SEED = "_ZN4ompl3RNG7setSeedEm"
 """``ompl::RNG::setSeed(std::uint_fast32_t)`` (unsigned long on x86-64 Linux)."""
