@@ -34,12 +34,23 @@ ControlKind = Literal["empty", "unrelated", "other_object"]
 EpisodeStatus = Literal["success", "failure", "error", "invalid_scene"]
 
 
+SCHEMA_KEY = b"ladev_schema_version"
+"""Parquet footer key of a table's schema version (``ladev_version`` before; still read)."""
+
+
 class TableRow(BaseModel):
-    """Base of every table row model."""
+    """Base of every table row model.
+
+    Versioning, the one convention of every file LADEV writes: a schema version
+    named ``schema_version``, bumped when a field is added or its meaning changes.
+    A table's rows share it, so it is a class constant (``SCHEMA_VERSION``) written
+    to the Parquet footer; a record stored on its own (a scene spec, an episode
+    outcome, an LLM cache entry) carries it as a field, ``schema_version: Literal[N]``.
+    """
 
     model_config = ConfigDict(extra="forbid")
     TABLE: ClassVar[str] = ""
-    VERSION: ClassVar[int] = 1
+    SCHEMA_VERSION: ClassVar[int] = 1
 
 
 class SceneDesignRow(TableRow):
@@ -89,7 +100,7 @@ class InstructionRow(TableRow):
     """One instruction for a scene: the ``paraphrase`` stage's output (``instructions.parquet``)."""
 
     TABLE: ClassVar[str] = "instructions"
-    VERSION: ClassVar[int] = 2  # 2: control instructions (kind 'control', column 'control')
+    SCHEMA_VERSION: ClassVar[int] = 2  # 2: control instructions (kind 'control', column 'control')
 
     instruction_id: str = Field(
         description="Unique id: '<scene_id>/basic', '<scene_id>/para-<k>' or '<scene_id>/control-<kind>'."
@@ -128,7 +139,7 @@ class EpisodeRow(TableRow):
     """One rolled-out episode: the ``rollout`` stage's output (``episodes/<policy>.parquet``)."""
 
     TABLE: ClassVar[str] = "episodes"
-    VERSION: ClassVar[int] = 2
+    SCHEMA_VERSION: ClassVar[int] = 2
     """2: success at the end and at any step, trials, controls; timings moved to the
     ``episode_timings`` table so that this table is the same on every machine."""
 
@@ -227,7 +238,7 @@ def arrow_schema(model: type[TableRow]) -> pa.Schema:
         annotation = hints[name]
         nullable = type(None) in typing.get_args(annotation)
         fields.append(pa.field(name, _arrow_type(annotation), nullable=nullable))
-    meta = {b"ladev_table": model.TABLE.encode(), b"ladev_version": str(model.VERSION).encode()}
+    meta = {b"ladev_table": model.TABLE.encode(), SCHEMA_KEY: str(model.SCHEMA_VERSION).encode()}
     return pa.schema(fields, metadata=meta)
 
 
@@ -271,11 +282,13 @@ def read_table(path: str | Path, model: type[TableRow]) -> pl.DataFrame:
     file_schema = pq.read_schema(path)
     meta = file_schema.metadata or {}
     name = meta.get(b"ladev_table", b"").decode()
-    version = int(meta.get(b"ladev_version", b"0").decode() or 0)
+    version = int((meta.get(SCHEMA_KEY) or meta.get(b"ladev_version") or b"0").decode() or 0)
     if name != model.TABLE:
         raise TableError(f"{path}: holds table {name!r}, expected {model.TABLE!r}")
-    if version > model.VERSION:
-        raise TableError(f"{path}: table version {version} is newer than this LADEV reads ({model.VERSION})")
+    if version > model.SCHEMA_VERSION:
+        raise TableError(
+            f"{path}: table schema version {version} is newer than this LADEV reads ({model.SCHEMA_VERSION})"
+        )
     missing = [f for f in model.model_fields if f not in file_schema.names]
     if missing:
         raise TableError(f"{path}: missing columns {missing}")

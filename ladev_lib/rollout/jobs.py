@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -40,7 +40,6 @@ class EpisodeOutcome(BaseModel):
     """What one episode produced (the episode store's value)."""
 
     model_config = ConfigDict(extra="forbid")
-    VERSION: ClassVar[int] = 2
 
     schema_version: Literal[2] = 2
     status: EpisodeStatus
