@@ -30,7 +30,7 @@ def command(hydra_args: tuple[str, ...]) -> None:
     from hydra.core.hydra_config import HydraConfig
     from omegaconf import DictConfig, OmegaConf
 
-    from ladev_lib.pipeline import run_pipeline
+    from ladev_lib.pipeline.multirun import run_pipeline
 
     config_dir = find_config_dir()
     repo_root = config_dir.parent

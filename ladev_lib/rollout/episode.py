@@ -2,7 +2,7 @@
 
     outcome = run_episode(sim, policy, job, media)
 
-Seed every generator (:mod:`ladev_lib.rollout.seeding`), load the scene into
+Seed every generator (:mod:`ladev_lib.seeding`), load the scene into
 the reused simulator, check it is physically valid, then step the policy with
 what it declares it reads (the image at its size only if it wants one;
 proprioception; privileged state only if privileged) until the policy stops or
@@ -69,7 +69,7 @@ def choose_robot(scene_robot: str, policy_robots: tuple[str, ...]) -> str:
 
 
 def seed_everything(seed: int) -> None:
-    """Seed every generator an episode may draw from (see :mod:`ladev_lib.rollout.seeding`)."""
+    """Seed every generator an episode may draw from (see :mod:`ladev_lib.seeding`)."""
     seed_episode(seed)
 
 

@@ -14,7 +14,7 @@ from ladev_lib.config import compose_config, section
 from ladev_lib.language.config import ParaphraseConfig
 from ladev_lib.llm.config import LLMConfig
 from ladev_lib.llm.prompts import load_prompts
-from ladev_lib.pipeline import STAGE_ORDER
+from ladev_lib.pipeline.multirun import STAGE_ORDER
 from ladev_lib.policies.config import PolicyConfig
 from ladev_lib.report.config import ReportConfig
 from ladev_lib.rollout.config import RolloutConfig, executor_config
