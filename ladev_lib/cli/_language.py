@@ -12,7 +12,7 @@ from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.config import compose_config, section
 from ladev_lib.errors import LadevError
 from ladev_lib.language.config import ParaphraseConfig
-from ladev_lib.language.pipeline import make_validator
+from ladev_lib.language.factory import make_validator
 from ladev_lib.language.validator import ParaphraseValidator
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig, make_client

@@ -9,7 +9,7 @@
 
 Each takes the composed configuration (``params.yaml``), validates the
 sections it reads with their owners' models, calls the library that does the
-work (``study.generation``, ``scenes.text_to_scene``, ``language.pipeline``,
+work (``study.generation``, ``scenes.text_to_scene``, ``pipeline.instructions``,
 ``rollout.stage``, ``report.build``) and returns a result with ``messages()``:
 what the stage prints. :func:`run_stage` is how every stage script runs one.
 

@@ -18,10 +18,11 @@ import ladev_lib.language.offline_jobs  # noqa: F401  (registers the offline lan
 from ladev_lib.catalog import load_catalog
 from ladev_lib.config import section
 from ladev_lib.language.config import ParaphraseConfig
-from ladev_lib.language.pipeline import make_validator, paraphrase_scenes, scene_tasks
+from ladev_lib.language.factory import make_validator
 from ladev_lib.llm.config import LLMConfig, make_client
 from ladev_lib.llm.prompts import load_prompts
 from ladev_lib.pipeline import StageMessages
+from ladev_lib.pipeline.instructions import paraphrase_scenes, scene_tasks
 from ladev_lib.study.controls import control_rows
 from ladev_lib.study.design import StudyConfig
 from ladev_lib.tables import (
@@ -36,7 +37,7 @@ from ladev_lib.tables import (
 
 @dataclass(frozen=True)
 class ParaphraseSummary:
-    """``language.pipeline``'s counts, plus what the stage knows around them."""
+    """``pipeline.instructions``'s counts, plus what the stage knows around them."""
 
     scenes: int
     skipped: dict[str, int]

@@ -7,8 +7,8 @@ import pytest
 from ladev_lib.config import compose_config, section
 from ladev_lib.errors import ConfigError
 from ladev_lib.language.config import ParaphraseConfig
+from ladev_lib.language.factory import make_validator
 from ladev_lib.language.llm_jobs import LLMReader
-from ladev_lib.language.pipeline import make_validator
 from ladev_lib.language.validator import OfflineReader
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig

@@ -13,9 +13,9 @@ import yaml
 
 from ladev_lib.language.llm_jobs import ParaphraseAnswer
 from ladev_lib.language.parser import InstructionParse
-from ladev_lib.language.pipeline import SceneTask, paraphrase_scenes
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig
+from ladev_lib.pipeline.instructions import SceneTask, paraphrase_scenes
 from ladev_lib.tables import InstructionRow, read_table
 from tests.language.conftest import write_stage_inputs
 from tests.language.test_llm_jobs import ScriptedBackend

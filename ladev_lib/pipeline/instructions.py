@@ -22,14 +22,10 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ladev_lib.catalog import Catalog
-from ladev_lib.errors import ConfigError
-from ladev_lib.language.config import ParaphraseConfig
-from ladev_lib.language.embeddings import load_embedder
-from ladev_lib.language.llm_jobs import LLMReader, ParaphraseAnswer, paraphrase_request
+from ladev_lib.language.llm_jobs import ParaphraseAnswer, paraphrase_request
 from ladev_lib.language.paraphrase import sentence_key
 from ladev_lib.language.parser import InstructionParse
-from ladev_lib.language.validator import ParaphraseValidator, Verdict, resolve_precision
+from ladev_lib.language.validator import ParaphraseValidator, Verdict
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig
 from ladev_lib.llm.prompts import PromptTemplate
@@ -246,30 +242,3 @@ def _summary(
         "llm_calls": client.calls,
         "llm_cache_hits": client.cache_hits,
     }
-
-
-def make_validator(
-    cfg: ParaphraseConfig,
-    llm: LLMConfig,
-    *,
-    client: LLMClient | None = None,
-    parse_prompt: PromptTemplate | None = None,
-    catalog: Catalog | None = None,
-    threshold: float | None = None,
-) -> ParaphraseValidator:
-    """The configured validator: embedding model (loaded once per process) and structure reader."""
-    embedder = load_embedder(cfg.embedding_model, cfg.device)
-    embedder.batch_size = cfg.batch_size
-    use_llm = cfg.reader == "llm" or (cfg.reader == "auto" and llm.backend != "offline")
-    reader = None
-    if use_llm:
-        if client is None or parse_prompt is None:
-            raise ConfigError("paraphrase.reader=llm needs an LLM client and prompts.parse_instruction")
-        reader = LLMReader(client, parse_prompt, llm, catalog)
-    return ParaphraseValidator(
-        embedder,
-        threshold=cfg.similarity_threshold if threshold is None else threshold,
-        reader=reader,
-        catalog=catalog,
-        precision=resolve_precision(cfg.precision, cfg.device),
-    )
