@@ -17,6 +17,17 @@ def test_dvc_deps_cover_every_stage_closure() -> None:
     assert not any(missing.values()), f"run `python scripts/dvc_deps.py --fix`; missing: {missing}"
 
 
+def test_every_dep_dvc_yaml_names_exists() -> None:
+    import yaml
+
+    stages = yaml.safe_load((REPO_ROOT / "dvc.yaml").read_text())["stages"]
+    for name, body in stages.items():
+        body = body["do"] if "foreach" in body else body
+        for dep in body["deps"]:
+            if "${" not in dep:
+                assert (REPO_ROOT / dep).exists(), f"stage {name}: dep {dep!r} does not exist"
+
+
 def test_the_check_sees_a_missing_dep(tmp_path: Path) -> None:
     # A copy of dvc.yaml without the report package: the aggregate stage misses it.
     text = (REPO_ROOT / "dvc.yaml").read_text()
