@@ -17,10 +17,15 @@ from dataclasses import dataclass, field
 
 from ladev_lib.language import lexicon as lx
 from ladev_lib.language.mentions import NameIndex
+from ladev_lib.language.tasks import PLACEMENT_RELATIONS, RELATION_TASKS
 from ladev_lib.language.tokens import Token, is_sentence_end
 
-TASK_OF_RELATION = {"near": "move_near", "on": "put_on", "in": "put_in"}
-PLACEMENT = frozenset(TASK_OF_RELATION)
+TASK_OF_RELATION: dict[str, str] = dict(RELATION_TASKS)
+PLACEMENT = PLACEMENT_RELATIONS
+FREE = "~"
+"""Prefix of the key of a free noun phrase (one the catalog does not name): "~wine bottle"."""
+GRIPPER_WORDS = frozenset({"gripper", "grippers", "hand", "fingers", "claw", "claws", "jaws", "jaw", "grip", "pincers"})
+GRIP_VERBS = frozenset({"close", "open", "shut", "squeeze", "tighten", "clamp", "wrap", "loosen", "relax"})
 
 
 # -- clause structure -------------------------------------------------------------
@@ -36,6 +41,14 @@ class Ref:
     pronoun: bool = False
     quantity: str | None = None
     note: str | None = None
+    words: tuple[str, ...] = ()
+    """The phrase's content words (no determiner), for its noun phrase."""
+    free_problem: str | None = None
+    """Why a free phrase (key ``~...``) names no one catalog object, for the catalog-only view."""
+
+    @property
+    def free(self) -> bool:
+        return self.object_id is not None and self.object_id.startswith(FREE)
 
 
 @dataclass
@@ -69,6 +82,8 @@ class Clause:
     unknown_verb: str | None = None
     """An unlisted word in verb position after "and" / "then" (read as an action outside the tasks)."""
     particles: list[str] = field(default_factory=list)
+    bare_places: list[str] = field(default_factory=list)
+    """Phrases outside any relation that name a place or the robot ("the gripper")."""
     bare: list[Ref] = field(default_factory=list)
     governed: list[Governed] = field(default_factory=list)
     kind: str = "empty"
@@ -156,16 +171,21 @@ class ClauseReader:
         gov: Governed | None = None
         saw_or = False
         verbs: list[Token] = []
+        before: Token | None = None
 
         def close() -> None:
             nonlocal phrase
             if phrase:
-                refs, places = self._refs_of(phrase)
+                # a free noun phrase needs a noun-phrase position: a determiner, or right after
+                # a verb, a particle or a relation word ("put wine bottle on rack")
+                slot = before is None or before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ","
+                refs, places = self._refs_of(phrase, free_ok=slot or phrase[0].kind in ("DET", "QUANT"))
                 if gov is not None:
                     gov.refs.extend(refs)
                     gov.places.extend(places)
                 else:
                     c.bare.extend(refs)
+                    c.bare_places.extend(places)
             phrase = []
 
         first = 1 if c.unknown_verb is not None else 0
@@ -178,6 +198,8 @@ class ClauseReader:
                 phrase.append(tok)
                 continue
             close()
+            if tok.kind not in ("ADV",):
+                before = tok
             if tok.kind == "REL":
                 gov = Governed(tok.relation or "other", tok.text, tok.directional)
                 c.governed.append(gov)
@@ -203,7 +225,7 @@ class ClauseReader:
         c.alternatives = saw_or and len({r.object_id or r.text for r in c.refs()}) > 1
         _with_as_source(c)
 
-    def _refs_of(self, phrase: list[Token]) -> tuple[list[Ref], list[str]]:
+    def _refs_of(self, phrase: list[Token], free_ok: bool = True) -> tuple[list[Ref], list[str]]:
         """The object references in one noun phrase, and its text if it names a place instead."""
         text = " ".join(t.text for t in phrase if t.kind != "DET")
         quantity = next((t.text for t in phrase if t.kind == "QUANT"), None)
@@ -212,6 +234,8 @@ class ClauseReader:
             problem = f"'{pron.text}' means more than one object" if pron.text in lx.PLURAL_PRONOUNS else None
             return [Ref(pron.text, pronoun=problem is None, problem=problem)], []
         content = [t for t in phrase if t.kind in ("OBJ", "WORD")]
+        while content and content[0].kind == "WORD" and (content[0].text in lx.DESIRE or content[0].text in lx.SKIPPABLE):
+            content = content[1:]  # "like the carrot": the desire word is no part of the phrase
         heads = [
             k for k, t in enumerate(content)
             if t.kind == "OBJ" and not self._is_modifier(content, k)
@@ -224,18 +248,29 @@ class ClauseReader:
                 obj = content[k]
                 assert obj.object_id is not None
                 resolved = self.index.prefer_scene(obj.object_id, words, self.scene, obj.text)
-                refs.append(Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note))
+                refs.append(
+                    Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note, words=tuple(words))
+                )
                 start = k + 1
             return refs, []
         words = [w for t in content for w in t.text.split()]
+        full = tuple(words)
         if "of" in words[:-1]:
             words = words[len(words) - words[::-1].index("of") :]  # "can of coca cola" -> "coca cola"
         if not words:
             return [], [text] if text else []
         found = self.index.resolve_head(words, self.scene, text)
-        if found is None:
+        head = words[-1]
+        if found is None and (
+            not free_ok or head in lx.LOCATION_NOUNS or head in GRIPPER_WORDS or not head.isalpha()
+        ):
             return [], [text]
-        return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note)], []
+        if found is None or (found.object_id is None and found.problem and "plural" not in found.problem):
+            # a noun phrase the catalog does not name (or names ambiguously): free text, grounded later
+            free = _free_words(full)
+            problem = found.problem if found is not None else f"'{text}' names no known object"
+            return [Ref(text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem)], []
+        return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note, words=full)], []
 
     def _is_modifier(self, content: list[Token], k: int) -> bool:
         """A name used as a modifier: "the coke label", "orange soda"."""
@@ -258,6 +293,10 @@ class ClauseReader:
         return kind
 
     def _action_kind(self, c: Clause) -> str:
+        if c.verb is not None and c.verb.lemma in GRIP_VERBS and any(
+            p.split()[-1] in GRIPPER_WORDS for p in c.bare_places
+        ):
+            return "preamble"  # "close the gripper around it": a step of grasping, not another task
         has_ref = bool(c.bare)
         object_places = [g for g in c.placements() if g.refs]
         reverse = [g for g in c.governed if g.relation == "reverse" and g.refs]
@@ -292,6 +331,16 @@ class ClauseReader:
                 return "other"
             return "place_nodest"
         return cls or "other"
+
+
+def _free_words(words: tuple[str, ...]) -> tuple[str, ...]:
+    """A free phrase in head-final order: "bottle of wine" -> "wine bottle"; quantifiers dropped."""
+    words = tuple(w for w in words if w not in lx.QUANTIFIERS)
+    if "of" in words[1:-1]:
+        k = words.index("of")
+        if words[k - 1] in lx.CONTAINER_NOUNS:
+            return (*words[k + 1 :], *words[:k])
+    return words
 
 
 def _main_verb(verbs: list[Token]) -> Token | None:
