@@ -85,7 +85,7 @@ def test_changing_the_rules_changes_the_fingerprint_and_misses_the_cache(tmp_pat
 
     def edited(module):
         text = real_getsource(module)
-        return text + "\n# a changed rule\n" if module.__name__ == "ladev_lib.llm.grammar.environment" else text
+        return text + "\n# a changed rule\n" if module.__name__ == "ladev_lib.language.scene.environment" else text
 
     rules_fingerprint.cache_clear()
     monkeypatch.setattr(offline_module.inspect, "getsource", edited)

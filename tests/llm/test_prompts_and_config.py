@@ -8,8 +8,8 @@ import pytest
 
 from ladev_lib.config import compose_config, section
 from ladev_lib.errors import ConfigError
+from ladev_lib.language.scene import Vocabulary, read_description
 from ladev_lib.llm.config import LLMConfig
-from ladev_lib.llm.grammar import Vocabulary, read_description
 from ladev_lib.llm.prompts import PromptTemplate, build_request, load_prompts, render_messages
 from ladev_lib.scenes.operations import SceneOperations, operations_json_schema
 from ladev_lib.scenes.text_to_scene import object_listing

@@ -6,7 +6,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from ladev_lib.llm.grammar.environment import (
+from ladev_lib.language.scene.environment import (
     BRIGHTER,
     CAMERA_WORDS,
     DARKER,
@@ -17,15 +17,15 @@ from ladev_lib.llm.grammar.environment import (
     read_camera,
     read_lighting,
 )
-from ladev_lib.llm.grammar.instruction import parse_instruction
-from ladev_lib.llm.grammar.objects import (
+from ladev_lib.language.scene.instruction import parse_instruction
+from ladev_lib.language.scene.objects import (
     canonical_name,
     find_region,
     find_relation,
     quantity,
     unknown_phrase,
 )
-from ladev_lib.llm.grammar.words import (
+from ladev_lib.language.scene.words import (
     COUNT_TOTAL,
     HEADERS,
     KEYED_COUNT,

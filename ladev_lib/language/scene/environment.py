@@ -14,7 +14,7 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
-from ladev_lib.llm.grammar.words import NUM, length_scale
+from ladev_lib.language.scene.words import NUM, length_scale
 
 LIGHT_WORDS = re.compile(
     r"\b(?:light|lights|lighting|lit|illumination|illuminated|brightness|lamp|lamps|exposure|"

@@ -1,15 +1,10 @@
-"""Offline handlers for the scene jobs: ``describe_scenes`` and ``compile_scene``.
+"""The offline backend's ``describe_scenes`` job: the study's scenes written as descriptions.
 
-Both read the same template inputs the prompts in ``conf/prompts/default.yaml``
-are rendered from, and answer in the JSON a model is asked for.
-
-``describe_scenes`` inputs: ``items`` (id, task, num_objects, object_set,
-environment), ``bounds``; optional ``catalog_path``. Each item's seed is
-derived from the request's seed (the study seed) and the item id, the same
-seed the study design gives the scene.
-
-``compile_scene`` inputs: ``description``, ``instruction`` (may be empty),
-``task`` (may be empty), ``objects`` (the catalog's list in the prompt).
+Inputs (the same the prompt in ``conf/prompts/default.yaml`` is rendered
+from): ``items`` (id, task, num_objects, object_set, environment), ``bounds``;
+optional ``catalog_path``. Each item's seed is derived from the request's seed
+(the study seed) and the item id, the same seed the study design gives the
+scene. The writing itself is :func:`ladev_lib.scenes.writer.write_scene`.
 """
 
 from __future__ import annotations
@@ -19,15 +14,12 @@ from typing import Any
 
 from ladev_lib.catalog import load_catalog
 from ladev_lib.llm.base import OFFLINE_JOBS, LLMRequest
-from ladev_lib.llm.grammar import RULE_MODULES as GRAMMAR_MODULES
-from ladev_lib.llm.grammar import Vocabulary, read_description
-from ladev_lib.llm.scene_writer import write_scene
 from ladev_lib.scenes.spec import SceneBounds
+from ladev_lib.scenes.writer import write_scene
 from ladev_lib.study.seeds import derive_seed
 
 RULE_MODULES = (
-    *GRAMMAR_MODULES,
-    "ladev_lib.llm.scene_writer",
+    "ladev_lib.scenes.writer",
     "ladev_lib.study.seeds",
     "ladev_lib.scenes.sampling",
     "ladev_lib.scenes.placement",
@@ -54,16 +46,3 @@ def describe_scenes(request: LLMRequest) -> str:
         )
         scenes.append({"id": item["id"], "description": written.description, "instruction": written.instruction})
     return json.dumps({"scenes": scenes}, ensure_ascii=False)
-
-
-@OFFLINE_JOBS.register("compile_scene")
-def compile_scene(request: LLMRequest) -> str:
-    inputs = request.inputs
-    vocab = Vocabulary.from_objects(inputs.get("objects") or [])
-    ops = read_description(
-        str(inputs.get("description") or ""),
-        vocab,
-        instruction=str(inputs.get("instruction") or "") or None,
-        task=str(inputs.get("task") or "") or None,
-    )
-    return json.dumps(ops, ensure_ascii=False)
