@@ -178,7 +178,7 @@ class ClauseReader:
             if phrase:
                 # a free noun phrase needs a noun-phrase position: a determiner, or right after
                 # a verb, a particle or a relation word ("put wine bottle on rack")
-                slot = before is None or before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ","
+                slot = before is not None and (before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ",")
                 refs, places = self._refs_of(phrase, free_ok=slot or phrase[0].kind in ("DET", "QUANT"))
                 if gov is not None:
                     gov.refs.extend(refs)
@@ -262,10 +262,20 @@ class ClauseReader:
         found = self.index.resolve_head(words, self.scene, text)
         head = words[-1]
         if found is None and (
-            not free_ok or head in lx.LOCATION_NOUNS or head in GRIPPER_WORDS or not head.isalpha()
+            not free_ok or any(w in _NOT_NOUNS for w in full) or head in lx.LOCATION_NOUNS or head in GRIPPER_WORDS or not head.isalpha()
         ):
             return [], [text]
-        if found is None or (found.object_id is None and found.problem and "plural" not in found.problem):
+        if len(words) > 1 and head in _SURFACE_PARTS:
+            words = words[:-1]  # "the cabinet top": the cabinet
+            found = self.index.resolve_head(words, self.scene, text)
+            head = words[-1]
+            full = tuple(words)
+        unknown_modifier = any(
+            w not in self.index.name_words and w not in lx.COLOR_WORDS and w not in lx.SIZE_WORDS for w in words[:-1]
+        )
+        if found is None or (
+            found.object_id is None and found.problem and ("no known" in found.problem or unknown_modifier)
+        ):
             # a noun phrase the catalog does not name (or names ambiguously): free text, grounded later
             free = _free_words(full)
             problem = found.problem if found is not None else f"'{text}' names no known object"
@@ -331,6 +341,16 @@ class ClauseReader:
                 return "other"
             return "place_nodest"
         return cls or "other"
+
+
+_SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
+"""Head nouns that name a part of the object before them ("the cabinet top")."""
+_NOT_NOUNS = frozenset(
+    "how about what where why when whether if as mind let please kindly thanks okay ok "
+    "task job goal aim objective mission instruction instructions request idea plan step steps order "
+    "favor favour time moment chance way thing things something anything everything nothing".split()
+)
+"""Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
 
 
 def _free_words(words: tuple[str, ...]) -> tuple[str, ...]:

@@ -97,7 +97,7 @@ def test_reads_faithful_forms(text, roles):
         ("pick up both coke cans", "quantity"),
         ("pick up the coke can twice", "more than once"),
         ("pick up the can", "ambiguous"),
-        ("pick up the widget", "no object to act on"),
+        ("pick up the widget", "'widget' names no known object"),
         ("grab it", "refers to no object"),
         ("hand me the coke can", "hands the object to a person"),
         ("bring me the coke can", "hands the object to a person"),
