@@ -61,6 +61,11 @@ class Governed:
     refs: list[Ref] = field(default_factory=list)
     places: list[str] = field(default_factory=list)
     """Completing phrases that are not objects ("the table", "your left")."""
+    follows: str | None = None
+    """What the relation word comes right after: "bare" (the acted-on phrase) or "governed"."""
+    qualifier: str | None = None
+    """Set by the parser when the relation describes a phrase instead of stating the task:
+    "object" ("the bowl *next to the plate*") or "destination" ("the compartment *of the caddy*")."""
 
     @property
     def dangling(self) -> bool:
@@ -79,6 +84,8 @@ class Clause:
     recipient: bool = False
     alternatives: bool = False
     repeat: str | None = None
+    reverse_pick: bool = False
+    """A pick verb with a "from"/"off" phrase ("lift the bowl from the stove")."""
     unknown_verb: str | None = None
     """An unlisted word in verb position after "and" / "then" (read as an action outside the tasks)."""
     particles: list[str] = field(default_factory=list)
@@ -172,9 +179,10 @@ class ClauseReader:
         saw_or = False
         verbs: list[Token] = []
         before: Token | None = None
+        last: str | None = None  # what the previous element was: "bare" | "governed" | None
 
         def close() -> None:
-            nonlocal phrase
+            nonlocal phrase, last
             if phrase:
                 # a free noun phrase needs a noun-phrase position: a determiner, or right after
                 # a verb, a particle or a relation word ("put wine bottle on rack")
@@ -183,9 +191,11 @@ class ClauseReader:
                 if gov is not None:
                     gov.refs.extend(refs)
                     gov.places.extend(places)
+                    last = "governed"
                 else:
                     c.bare.extend(refs)
                     c.bare_places.extend(places)
+                    last = "bare" if refs else last
             phrase = []
 
         first = 1 if c.unknown_verb is not None else 0
@@ -201,10 +211,19 @@ class ClauseReader:
             if tok.kind not in ("ADV",):
                 before = tok
             if tok.kind == "REL":
-                gov = Governed(tok.relation or "other", tok.text, tok.directional)
+                back = j - 1
+                while back > 0 and c.tokens[back].kind == "ADV":
+                    back -= 1
+                prev_kind = c.tokens[back].kind if back >= 0 and j > 0 else None
+                follows = last if prev_kind in ("OBJ", "WORD", "PRON") else None
+                if prev_kind == "REL":
+                    follows = "governed"  # "from between the plate and ..."
+                gov = Governed(tok.relation or "other", tok.text, tok.directional, follows=follows)
                 c.governed.append(gov)
+                last = "governed"
             elif tok.kind in ("VERB", "BE", "MODAL", "NEG"):
                 gov = None
+                last = None
                 if tok.kind == "VERB":
                     verbs.append(tok)
                     nxt = c.tokens[j + 1] if j + 1 < len(c.tokens) else None
@@ -259,17 +278,21 @@ class ClauseReader:
             words = words[len(words) - words[::-1].index("of") :]  # "can of coca cola" -> "coca cola"
         if not words:
             return [], [text] if text else []
-        found = self.index.resolve_head(words, self.scene, text)
+        if len(words) > 1 and words[-1] in _SURFACE_PARTS:
+            words = words[:-1]  # "the cabinet top": the cabinet
+            full = tuple(w for w in full if w not in _SURFACE_PARTS)
         head = words[-1]
+        found = self.index.resolve_head(words, self.scene, text)
+        if found is not None and head not in self.index.name_words and not self.index.is_object_noun(head):
+            found = None  # "the wooden cabinet": a modifier that names catalog objects does not make it one
         if found is None and (
-            not free_ok or any(w in _NOT_NOUNS for w in full) or head in lx.LOCATION_NOUNS or head in GRIPPER_WORDS or not head.isalpha()
+            not free_ok
+            or any(w in _NOT_NOUNS for w in full)
+            or head in lx.LOCATION_NOUNS
+            or head in GRIPPER_WORDS
+            or not head.isalpha()
         ):
             return [], [text]
-        if len(words) > 1 and head in _SURFACE_PARTS:
-            words = words[:-1]  # "the cabinet top": the cabinet
-            found = self.index.resolve_head(words, self.scene, text)
-            head = words[-1]
-            full = tuple(words)
         unknown_modifier = any(
             w not in self.index.name_words and w not in lx.COLOR_WORDS and w not in lx.SIZE_WORDS for w in words[:-1]
         )
@@ -325,6 +348,7 @@ class ClauseReader:
             return "other"
         if cls == "pick":
             if reverse or (reverse_particle and not object_places):
+                c.reverse_pick = bool(reverse) and not c.recipient
                 return "other"
             if any(g.directional or verb.lemma in lx.PICK_PLACES_WITH_STATIVE for g in object_places):
                 return "place"

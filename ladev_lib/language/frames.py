@@ -24,6 +24,24 @@ from ladev_lib.catalog import Catalog
 
 
 @dataclass(frozen=True)
+class Qualifier:
+    """A relation that describes a phrase: "(the bowl) next to the plate", "(the slot) of the caddy"."""
+
+    relation: str
+    """near | on | in | from | another relation word ("between", "of", "at")."""
+    landmarks: tuple[NounPhrase, ...] = ()
+    places: tuple[str, ...] = ()
+    """Landmarks that are places, not objects ("the table center")."""
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "relation": self.relation,
+            "landmarks": [p.as_dict() for p in self.landmarks],
+            "places": list(self.places),
+        }
+
+
+@dataclass(frozen=True)
 class NounPhrase:
     """An object as written: "the small wine bottle" -> text "small wine bottle", head "bottle"."""
 
@@ -35,13 +53,21 @@ class NounPhrase:
     """The words before the head ("small", "wine")."""
     object_id: str | None = None
     """The catalog id when the phrase is a catalog name or synonym; None for free text."""
+    qualifiers: tuple[Qualifier, ...] = ()
+    """Relations that locate or specify it ("the black bowl *next to the ramekin*")."""
 
     @property
     def free(self) -> bool:
         return self.object_id is None
 
     def as_dict(self) -> dict[str, Any]:
-        return {"text": self.text, "head": self.head, "modifiers": list(self.modifiers), "object_id": self.object_id}
+        return {
+            "text": self.text,
+            "head": self.head,
+            "modifiers": list(self.modifiers),
+            "object_id": self.object_id,
+            "qualifiers": [q.as_dict() for q in self.qualifiers],
+        }
 
 
 @dataclass(frozen=True)

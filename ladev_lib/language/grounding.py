@@ -30,7 +30,7 @@ from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.catalog.catalog import normalize_name
 from ladev_lib.language import lexicon as lx
-from ladev_lib.language.frames import NounPhrase
+from ladev_lib.language.frames import NounPhrase, Qualifier
 from ladev_lib.language.mentions import NameIndex, name_index
 
 DEFAULT_MARGIN = 0.05
@@ -202,6 +202,9 @@ class Grounder:
         for g in (ga, gb):
             if g.how in ("ambiguous", "absent"):
                 return False, g.reason, ga, gb
+        why = self._qualifiers_differ(a, b, scene)
+        if why is not None:
+            return False, why, ga, gb
         if ga.object_id is not None and gb.object_id is not None:
             if ga.object_id == gb.object_id:
                 return True, None, ga, gb
@@ -210,6 +213,31 @@ class Grounder:
             return False, f"{ga.object_id} -> {gb.object_id}", ga, gb
         same = self._same_text(a, b, ga.object_id, gb.object_id)
         return same, None if same else f"'{a.text}' -> '{b.text}'", ga, gb
+
+    def _qualifiers_differ(
+        self, a: NounPhrase, b: NounPhrase, scene: Sequence[SceneObject] | None
+    ) -> str | None:
+        """Why two phrases' locating relations disagree ("next to the plate" vs "on the plate").
+
+        A phrase without qualifiers is less specific, not different; where both
+        locate the object, the first relation with landmarks must agree (a
+        "from" fits "on" and "in") and every landmark of the shorter list must
+        match one of the other's.
+        """
+        qa = [_with_places(q) for q in a.qualifiers if q.landmarks or q.places]
+        qb = [_with_places(q) for q in b.qualifiers if q.landmarks or q.places]
+        if not qa or not qb:
+            return None
+        ra, rb = qa[0].relation, qb[0].relation
+        if ra != rb and not ({ra, rb} <= {"from", "on", "in"} and "from" in {ra, rb}):
+            return f"'{a.text} {ra} ...' -> '{b.text} {rb} ...'"
+        la = [p for q in qa for p in q.landmarks]
+        lb = [p for q in qb for p in q.landmarks]
+        short, long_ = (la, lb) if len(la) <= len(lb) else (lb, la)
+        for p in short:
+            if not any(self.compare(_bare(p), _bare(o), scene)[0] for o in long_):
+                return f"landmark '{p.text}' not in '{' / '.join(o.text for o in long_)}'"
+        return None
 
     def _fits_catalog(self, phrase: NounPhrase, object_id: str) -> bool:
         if object_id not in self.catalog:
@@ -240,6 +268,16 @@ class Grounder:
 
 
 _COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
+
+
+def _with_places(q: Qualifier) -> Qualifier:
+    """Places as landmarks too ("from the table center")."""
+    extra = tuple(NounPhrase(p, p.split()[-1], tuple(p.split()[:-1])) for p in q.places if p.split())
+    return Qualifier(q.relation, (*q.landmarks, *extra))
+
+
+def _bare(phrase: NounPhrase) -> NounPhrase:
+    return NounPhrase(phrase.text, phrase.head, phrase.modifiers, phrase.object_id)
 
 
 def _descriptive(modifiers: Iterable[str]) -> frozenset[str]:

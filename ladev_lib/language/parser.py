@@ -39,7 +39,7 @@ from ladev_lib.language.clauses import (
     Ref,
     split_clauses,
 )
-from ladev_lib.language.frames import Frame, NounPhrase
+from ladev_lib.language.frames import Frame, NounPhrase, Qualifier
 from ladev_lib.language.mentions import name_index
 from ladev_lib.language.tasks import TASKS
 from ladev_lib.language.tokens import tag_tokens
@@ -96,7 +96,52 @@ class _Action:
         return [r for c in self.clauses for r in c.bare]
 
     def governed(self) -> list[Governed]:
-        return [g for c in self.clauses for g in c.governed]
+        """The relations that state the task (not those that describe a phrase)."""
+        return [g for c in self.clauses for g in c.governed if g.qualifier is None]
+
+    def qualifiers(self, role: str) -> list[Governed]:
+        return [g for c in self.clauses for g in c.governed if g.qualifier == role]
+
+
+def _mark_qualifiers(act: _Action) -> None:
+    """Relations that describe a phrase rather than state the task.
+
+    "pick up the bowl *next to the plate* and put it on the tray": the first
+    relation locates the object; "put it in the compartment *of the caddy*":
+    the "of" phrase belongs to the destination. A stative relation right
+    after the acted-on phrase (or chained after such a one) is the object's
+    only when another relation is left to be the destination; a relation in
+    a pick clause that was merged into a placement always is.
+    """
+    if act.kind not in ("place", "pick"):
+        return
+    potential: list[Governed] = []
+    for c in act.clauses:
+        merged_pick = act.kind == "place" and (c.kind == "pick" or c.reverse_pick)
+        prev: Governed | None = None
+        for g in c.governed:
+            if merged_pick and (g.refs or g.places) and _locates(g):
+                g.qualifier = "object"
+            elif not g.directional and _locates(g) and (
+                g.follows == "bare" or (g.follows == "governed" and prev is not None and prev in potential)
+            ):
+                potential.append(g)
+            prev = g
+    if act.kind == "pick":
+        for g in potential:
+            g.qualifier = "object"
+        return
+    rest = [g for c in act.clauses for g in c.governed if g.qualifier is None and g not in potential]
+    if any(g.relation in PLACEMENT and g.refs for g in rest):
+        for g in potential:
+            g.qualifier = "object"
+    # "of" right after the destination phrase: part of it ("the back compartment of the caddy")
+    for c in act.clauses:
+        for prev, g in zip(c.governed, c.governed[1:], strict=False):
+            if g.phrase == "of" and g.follows == "governed" and prev.qualifier is None and prev.relation in PLACEMENT:
+                g.qualifier = "destination"
+            elif g.phrase == "of" and g.follows == "governed" and prev.qualifier == "object":
+                g.qualifier = "object"
 
 
 def _resolve_pronouns(clauses: list[Clause]) -> None:
@@ -162,7 +207,8 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)
     if not _same_object(a, b):
         return None
-    if a.kind == "pick" and b.kind in ("place", "pick"):
+    picked_from = a.kind == "other" and all(c.reverse_pick for c in a.clauses)
+    if (a.kind == "pick" or picked_from) and b.kind in ("place", "pick"):
         return _Action(b.kind, both)
     reordered = any((c.intro or "") in ("after", "before", "once") for c in both)
     if reordered and {a.kind, b.kind} == {"pick", "place"}:
@@ -193,6 +239,8 @@ class _Composer:
             if not c.negation and (c.kind in _ACTIONS or (c.kind == "place" and c.verb is None))
         ]
         actions = _merge(positive)
+        for act in actions:
+            _mark_qualifiers(act)
         task: str | None = None
         source: Ref | None = None
         target: Ref | None = None
@@ -230,8 +278,8 @@ class _Composer:
         return Frame(
             text=self.text,
             task=task,
-            object=self._phrase(source),
-            destination=self._phrase(target),
+            object=self._phrase(source, main.qualifiers("object") if main else []),
+            destination=self._phrase(target, main.qualifiers("destination") if main else []),
             negated=negated_task or (not actions and bool(negated)),
             extra_steps=tuple(extra),
             dropped_roles=tuple(dropped),
@@ -240,10 +288,18 @@ class _Composer:
             notes=notes,
         )
 
-    def _phrase(self, ref: Ref | None) -> NounPhrase | None:
-        """The noun phrase of a role: the antecedent's words for a pronoun."""
+    def _phrase(self, ref: Ref | None, qualifiers: list[Governed] | None = None) -> NounPhrase | None:
+        """The noun phrase of a role: the antecedent's words for a pronoun; its qualifiers."""
         if ref is None or ref.object_id is None:
             return None
+        quals = tuple(
+            Qualifier(
+                _qualifier_relation(g),
+                tuple(p for p in (self._phrase(r) for r in g.refs) if p is not None),
+                tuple(g.places),
+            )
+            for g in qualifiers or []
+        )
         if ref.pronoun or not ref.words:
             named = next(
                 (r for c in self.clauses for r in c.refs() if r.object_id == ref.object_id and not r.pronoun and r.words),
@@ -257,7 +313,7 @@ class _Composer:
             words = tuple(ref.object_id[len(FREE) :].split())
         words = words or (ref.text,)
         return NounPhrase(
-            " ".join(words), words[-1], tuple(words[:-1]), None if free else ref.object_id
+            " ".join(words), words[-1], tuple(words[:-1]), None if free else ref.object_id, quals
         )
 
     def _roles(self, act: _Action) -> tuple[str | None, Ref | None, Ref | None]:
@@ -333,16 +389,36 @@ class _Composer:
     ) -> None:
         in_main = {id(c) for c in main.clauses} if main else set()
         excluded = {id(c) for c in negated}
+        described = {id(r) for c in (main.clauses if main else []) for g in c.governed if g.qualifier for r in g.refs}
         for c in self.clauses:
             if c.kind == "manner" or id(c) in excluded:
                 continue
             if c.alternatives:
                 self.reasons.append("alternative objects ('or')")
             for r in c.refs():
+                if id(r) in described:
+                    continue
                 if id(c) not in in_main and r.problem:
                     self.reasons.append(r.problem)
                 if r.object_id and r.object_id not in (source, target):
                     self.reasons.append(f"mentions another object: {_shown(r.object_id)}")
+
+
+_NOT_LOCATING = frozenset({"with", "for", "through", "across", "against", "around", "over", "along"})
+
+
+def _locates(g: Governed) -> bool:
+    """Whether a relation can say where a thing is ("next to", "on", "from", "between"; not "with")."""
+    return g.phrase not in _NOT_LOCATING
+
+
+def _qualifier_relation(g: Governed) -> str:
+    """near | on | in | from | the relation word itself ("between", "of")."""
+    if g.relation in PLACEMENT:
+        return g.relation
+    if g.relation == "reverse":
+        return "from"
+    return g.phrase
 
 
 def _shown(key: str) -> str:

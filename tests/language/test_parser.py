@@ -90,7 +90,7 @@ def test_reads_faithful_forms(text, roles):
         ("pick up the coke can and the pepsi can", "more than one object"),
         ("pick up the coke can or the pepsi can", "alternative objects"),
         ("move the green cube near the yellow cube and the sponge", "more than one destination"),
-        ("pick up the coke can next to the pepsi can", "mentions another object: pepsi_can"),
+        ("pick up the coke can along with the pepsi can", "mentions another object: pepsi_can"),
         ("pick up the coke can that is next to the pepsi can", "mentions another object: pepsi_can"),
         ("pick up the lego", "ambiguous"),
         ("pick up the coke cans", "plural"),
