@@ -6,6 +6,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from ladev_lib.language.frames import read_instruction
 from ladev_lib.language.scene.environment import (
     BRIGHTER,
     CAMERA_WORDS,
@@ -25,6 +26,7 @@ from ladev_lib.language.scene.objects import (
     quantity,
     unknown_phrase,
 )
+from ladev_lib.language.scene.statements import find_task
 from ladev_lib.language.scene.words import (
     COUNT_TOTAL,
     HEADERS,
@@ -256,17 +258,23 @@ def read_description(
     instruction: str | None = None,
     task: str | None = None,
 ) -> dict[str, Any]:
-    """Description (+ instruction or task type) -> a SceneOperations-shaped dict."""
-    text = normalize_text(description or "", vocab)
+    """Description (+ instruction or task type) -> a SceneOperations-shaped dict.
+
+    The task is, in order: the explicit ``instruction``; the task the
+    description states (its statements are not read as objects); ``task``
+    (a type alone). Task statements are taken out of the text either way.
+    """
+    found = find_task(description or "", vocab.ids)
+    text = normalize_text(found.rest, vocab)
     protected, slots = protect_coordinates(text)
     reading = _Reader(vocab, slots).read(protected)
 
     out: dict[str, Any] = {"schema_version": 1, "operations": []}
     if reading.object_set:
         out["object_set"] = reading.object_set
-    instruction = instruction or reading.task_line
+    stated = found.task
     if instruction:
-        parsed = parse_instruction(instruction)
+        parsed = _instruction_task(instruction, vocab)
         if parsed is None:
             out["error"] = (
                 f"the instruction {instruction!r} is none of the four task forms "
@@ -274,10 +282,20 @@ def read_description(
             )
             return out
         out["task"] = parsed
+    elif stated is not None:
+        out["task"] = stated
+    elif found.statement or reading.task_line:
+        what = found.statement or reading.task_line
+        out["error"] = (
+            f"the task {what!r} is none of the four task forms "
+            "(pick up X; move X near Y; put X on Y; put X in Y)"
+        )
+        return out
     elif task:
         out["task"] = {"type": task}
+    recognised_task = 1 if out.get("task") is not None else 0
 
-    if description.strip() and reading.recognised == 0:
+    if description.strip() and reading.recognised + recognised_task == 0:
         out["error"] = "no object, object count, position, lighting or camera setting found in the description"
         return out
 
@@ -301,3 +319,18 @@ def read_description(
     ops.extend(merge_camera(reading.camera))
     out["operations"] = ops
     return out
+
+
+def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | None:
+    """An explicit instruction's task, objects as the vocabulary names them; None if none of the four."""
+    found = find_task(f"task: {instruction}", vocab.ids)
+    if found.task is not None:
+        return found.task
+    frame = read_instruction(instruction)
+    if frame.task is not None and frame.task != "other" and frame.object is not None:
+        return {
+            "type": frame.task,
+            "source": frame.object.text,
+            "target": frame.destination.text if frame.destination is not None and frame.task != "pick_up" else None,
+        }
+    return parse_instruction(instruction)

@@ -1,0 +1,216 @@
+"""Where a scene description states its task, and what that task is.
+
+    found = find_task(text)
+    found.task       # {"type": "put_on", "source": "orange", "target": "plate"} or None
+    found.rest       # the text without the task statement(s), for the scene reader
+    found.statement  # the words the task was read from
+
+A description may state the task anywhere: a labelled line or clause
+("Task: ...", "TASK ...", "task(...)", "the goal is to ...", "instruction =
+..."), a sentence about the robot ("the robot should ...", "I want the arm to
+...", "let's see whether it can ...", "... — that's the robot's whole job"),
+or a bare command over definite or bare nouns ("put the peach on the red
+plate", "move fanta near green cup"). Placement commands that set the scene
+("put a carrot near the front", "place the bowl on the left side") are not
+tasks: their object is introduced with "a"/"an"/a number, or their
+destination is a part of the table.
+
+A labelled or robot statement wins over a bare command; among statements of
+the same strength, the last one wins ("task: a — no, b"). Each statement is
+read with :func:`ladev_lib.language.frames.read_instruction`, so the scene
+reader and the instruction reader share one grammar of the four tasks.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from ladev_lib.language.frames import Frame, NounPhrase, read_instruction
+from ladev_lib.language.tasks import TASKS
+
+_VERB = (
+    r"(?:pick(?:s|ing)?\s+up|pick|grab|grasp|lift|take|put|place|set|move|bring|stack|drop|insert|push|slide|"
+    r"carry|lay|rest|get|pop|stick|deposit|transfer|relocate|nudge|shift|stand|position|load)"
+)
+_AGENT = r"(?:the\s+)?(?:robot|arm|agent|gripper|policy|system|manipulator|model|it|they|you|we)"
+_MODAL = (
+    r"(?:should|must|will|would|shall|can|could|may|might|needs?\s+to|has\s+to|have\s+to|is\s+to|are\s+to|"
+    r"is\s+supposed\s+to|is\s+expected\s+to|is\s+meant\s+to|is\s+going\s+to|ought\s+to|'ll|is\s+asked\s+to|"
+    r"gets?\s+to|tries\s+to|try\s+to|attempts?\s+to|is\s+able\s+to|manages?\s+to)"
+)
+LABEL = re.compile(
+    r"(?:^|(?<=[\s(\[{|;,.:•*-]))(?:the\s+)?(?:main\s+|actual\s+|robot(?:'s)?\s+|its\s+)?"
+    r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt)"
+    r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
+    r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+will\s+be\s+(?:to\s+)?|\s+(?=" + _VERB + r"\b))",
+    re.IGNORECASE,
+)
+AGENT_MODAL = re.compile(
+    rf"\b{_AGENT}\s+(?:\w+\s+)?{_MODAL}\s+(?:now\s+|then\s+|first\s+|simply\s+|just\s+|only\s+|also\s+)?(?={_VERB}\b)",
+    re.IGNORECASE,
+)
+WANT_TO = re.compile(
+    rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
+    rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)",
+    re.IGNORECASE,
+)
+BACK_LABEL = re.compile(
+    r"^\s*(?:that|this|which)(?:'s|\s+is|\s+will\s+be)\s+(?:the\s+)?(?:robot'?s?\s+|arm'?s?\s+|its\s+)?"
+    r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)",
+    re.IGNORECASE,
+)
+IMPERATIVE = re.compile(
+    rf"^\s*(?:(?:please|now|then|and|just|finally|simply|so|also|next)\s*,?\s+)*(?={_VERB}\b)", re.IGNORECASE
+)
+_INDEFINITE = re.compile(
+    r"^\s*(?:up\s+)?(?:a|an|one|two|three|four|five|six|some|several|\d+|another|any|random)\b", re.IGNORECASE
+)
+_PLACE_WORDS = frozenset(
+    {"left", "right", "front", "back", "center", "centre", "middle", "side", "edge", "corner", "table",
+     "tabletop", "table top", "surface", "scene", "somewhere", "anywhere", "spot", "area", "rear", "far side",
+     "near side", "workspace", "top", "bottom", "place", "position"}
+)
+_SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—")
+
+
+@dataclass(frozen=True)
+class TaskStatement:
+    """One statement of the task, where it is in the text and how strongly it is marked."""
+
+    start: int
+    end: int
+    text: str
+    frame: Frame
+    strength: int
+    """2: labelled or about the robot; 1: a bare command."""
+
+
+@dataclass
+class FoundTask:
+    task: dict[str, Any] | None
+    rest: str
+    statement: str | None = None
+    statements: list[TaskStatement] = field(default_factory=list)
+
+
+def _segments(text: str) -> list[tuple[int, int]]:
+    spans: list[tuple[int, int]] = []
+    pos = 0
+    for m in _SEGMENT.finditer(text):
+        if m.start() > pos:
+            spans.append((pos, m.start()))
+        pos = m.end()
+    if pos < len(text):
+        spans.append((pos, len(text)))
+    return spans
+
+
+def _is_place(phrase: NounPhrase | None) -> bool:
+    if phrase is None:
+        return False
+    words = phrase.text.lower().split()
+    return phrase.head.lower() in _PLACE_WORDS or (bool(words) and words[-1] in _PLACE_WORDS)
+
+
+def _cuts(candidate: str) -> list[str]:
+    """The candidate, then shorter versions cut at clause boundaries (first boundary last)."""
+    out = [candidate]
+    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|so that|so|then|with|because)\s+|\(|\)", candidate))):
+        head = candidate[: m.start()].strip()
+        if head and head not in out:
+            out.append(head)
+    return out
+
+
+def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+    for text in _cuts(candidate.strip().strip(")(\"'`*").strip()):
+        if not text:
+            continue
+        frame = reader(text)
+        if frame.task in TASKS and frame.object is not None and frame.ok:
+            if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
+                continue
+            return frame
+    return None
+
+
+def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement]:
+    found: list[TaskStatement] = []
+    spans = _segments(text)
+    for i, (s, e) in enumerate(spans):
+        seg = text[s:e]
+        marked = None
+        for pattern in (LABEL, AGENT_MODAL, WANT_TO):
+            m = pattern.search(seg)
+            if m is not None and (marked is None or m.end() < marked):
+                marked = m.end()
+        if marked is not None:
+            frame = _read(seg[marked:], reader)
+            if frame is not None:
+                start = s + (LABEL.search(seg) or AGENT_MODAL.search(seg) or WANT_TO.search(seg)).start()  # type: ignore[union-attr]
+                found.append(TaskStatement(start, e, seg[marked:].strip(), frame, 2))
+                continue
+            if LABEL.search(seg) and seg[marked:].strip():
+                # a labelled task that is none of the four forms is still the task statement
+                found.append(TaskStatement(s, e, seg[marked:].strip(), reader(seg[marked:].strip()), 0))
+                continue
+        m = IMPERATIVE.match(seg)
+        if m is None:
+            continue
+        after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
+        if _INDEFINITE.match(after_verb):
+            continue
+        frame = _read(seg[m.end():], reader)
+        if frame is None:
+            continue
+        back = i + 1 < len(spans) and BACK_LABEL.match(text[spans[i + 1][0]:spans[i + 1][1]]) is not None
+        found.append(TaskStatement(s, e, seg[m.end():].strip(), frame, 2 if back else 1))
+        if back:
+            ns, ne = spans[i + 1]
+            found.append(TaskStatement(ns, ne, "", frame, -1))  # the tag itself, removed with the statement
+    return found
+
+
+def _mention(phrase: NounPhrase | None, names: Mapping[str, str]) -> str | None:
+    if phrase is None:
+        return None
+    if phrase.object_id is not None and phrase.object_id in names:
+        return names[phrase.object_id]
+    return phrase.text
+
+
+def find_task(
+    text: str,
+    names: Mapping[str, str] | None = None,
+    reader: Callable[[str], Frame] | None = None,
+) -> FoundTask:
+    """The task a description states (or None), and the description without its task statements.
+
+    ``names`` maps catalog ids to the names the scene reader knows them by (the
+    prompt's object list), so that the task's objects are the described ones.
+    """
+    read = reader or read_instruction
+    statements = _statements(text, read)
+    strong = [s for s in statements if s.strength == 2]
+    weak = [s for s in statements if s.strength == 1]
+    unreadable = [s for s in statements if s.strength == 0]
+    chosen = strong[-1] if strong else (weak[-1] if weak else None)
+    removed = [s for s in statements if s.strength in (2, 0, -1)] + ([chosen] if chosen is not None else [])
+    rest = text
+    for st in sorted({(s.start, s.end) for s in removed}, reverse=True):
+        rest = rest[: st[0]] + " . " + rest[st[1]:]
+    if chosen is None:
+        if unreadable:
+            return FoundTask(None, rest, unreadable[-1].text, statements)
+        return FoundTask(None, rest, None, statements)
+    names = names or {}
+    frame = chosen.frame
+    task = {
+        "type": frame.task,
+        "source": _mention(frame.object, names),
+        "target": _mention(frame.destination, names) if frame.task != "pick_up" else None,
+    }
+    return FoundTask(task, rest, chosen.text, statements)
