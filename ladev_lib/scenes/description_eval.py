@@ -42,7 +42,7 @@ from typing import Any
 from ladev_lib.catalog import Catalog
 from ladev_lib.scenes.operations import SceneOperations
 from ladev_lib.scenes.resolve import ObjectResolver
-from ladev_lib.scenes.spec import SceneSpec
+from ladev_lib.scenes.spec import SceneBounds, SceneSpec
 
 FIELDS = (
     "n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility",
@@ -350,7 +350,9 @@ def format_table(results: dict[str, DescriptionEval]) -> str:
     return head + "\n".join(lines) + "\n"
 
 
-def offline_compile_fn(conf_dir: Path, overrides: Sequence[str] = ()) -> tuple[CompileFn, Catalog, ObjectResolver]:
+def offline_compile_fn(
+    conf_dir: Path, overrides: Sequence[str] = (), max_objects: int = 7
+) -> tuple[CompileFn, Catalog, ObjectResolver]:
     """The project's compiler as configured (offline backend unless overridden), without a cache."""
     from ladev_lib.catalog import load_catalog
     from ladev_lib.config import compose_config, section
@@ -364,7 +366,9 @@ def offline_compile_fn(conf_dir: Path, overrides: Sequence[str] = ()) -> tuple[C
     compile_cfg = section(cfg, "compile", CompileConfig)
     prompt = load_prompts(cfg, ["compile_scene"])["compile_scene"]
     catalog = load_catalog(cfg.get("catalog"))
-    compiler = SceneCompiler(make_client(llm, None), prompt, llm, catalog, None, compile_cfg)
+    # The study's bounds, with room for the largest scene the dev set describes (7 objects).
+    bounds = SceneBounds(max_objects=max_objects)
+    compiler = SceneCompiler(make_client(llm, None), prompt, llm, catalog, bounds, compile_cfg)
     counter = iter(range(1, 10**9))
 
     def compile_fn(text: str) -> CompileView:
