@@ -187,7 +187,7 @@ class ClauseReader:
                 # a free noun phrase needs a noun-phrase position: a determiner, or right after
                 # a verb, a particle or a relation word ("put wine bottle on rack")
                 slot = before is not None and (before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ",")
-                refs, places = self._refs_of(phrase, free_ok=slot or phrase[0].kind in ("DET", "QUANT"))
+                refs, places = self._refs_of(phrase, free_ok=slot or any(t.kind in ("DET", "QUANT") for t in phrase))
                 if gov is not None:
                     gov.refs.extend(refs)
                     gov.places.extend(places)
@@ -204,6 +204,11 @@ class ClauseReader:
                 continue
             if tok.text in lx.DESIRE:
                 c.desire = True
+            if tok.kind == "WORD" and (tok.text in lx.DESIRE or tok.text == "to") and any(
+                t.kind in ("OBJ", "WORD") and t.text not in lx.DESIRE for t in phrase
+            ):
+                close()  # "the pen needs to be ...": the phrase ends before the desire word
+                continue
             if tok.kind in ("OBJ", "PRON", "DET", "QUANT", "WORD"):
                 phrase.append(tok)
                 continue
@@ -288,7 +293,7 @@ class ClauseReader:
         if found is None and (
             not free_ok
             or any(w in _NOT_NOUNS for w in full)
-            or head in lx.LOCATION_NOUNS
+            or (head in lx.LOCATION_NOUNS and head not in _FURNITURE)
             or head in GRIPPER_WORDS
             or not head.isalpha()
         ):
@@ -297,7 +302,9 @@ class ClauseReader:
             w not in self.index.name_words and w not in lx.COLOR_WORDS and w not in lx.SIZE_WORDS for w in words[:-1]
         )
         if found is None or (
-            found.object_id is None and found.problem and ("no known" in found.problem or unknown_modifier)
+            found.object_id is None
+            and found.problem
+            and ("no known" in found.problem or unknown_modifier or (self.scene is not None and "plural" not in found.problem))
         ):
             # a noun phrase the catalog does not name (or names ambiguously): free text, grounded later
             free = _free_words(full)
@@ -367,6 +374,8 @@ class ClauseReader:
         return cls or "other"
 
 
+_FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
+"""Place nouns that are objects of their own in open-vocabulary scenes ("put the mug on the shelf")."""
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
 """Head nouns that name a part of the object before them ("the cabinet top")."""
 _NOT_NOUNS = frozenset(

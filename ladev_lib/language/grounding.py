@@ -35,7 +35,7 @@ from ladev_lib.language.mentions import NameIndex, name_index
 
 DEFAULT_MARGIN = 0.05
 """Cosine margin the best scene object needs over the runner-up to be chosen by embedding."""
-DEFAULT_MIN_SIMILARITY = 0.55
+DEFAULT_MIN_SIMILARITY = 0.60
 """Lowest phrase-to-name cosine similarity that grounds by embedding."""
 FREE_SAME_SIMILARITY = 0.80
 """Two phrases with different head nouns name the same thing at this similarity or above."""
@@ -202,6 +202,10 @@ class Grounder:
         for g in (ga, gb):
             if g.how in ("ambiguous", "absent"):
                 return False, g.reason, ga, gb
+        colours_a = {w for w in a.modifiers if w in _COLOURS}
+        colours_b = {w for w in b.modifiers if w in _COLOURS}
+        if colours_a and colours_b and not colours_a & colours_b:
+            return False, f"'{a.text}' -> '{b.text}' (another colour)", ga, gb
         why = self._qualifiers_differ(a, b, scene)
         if why is not None:
             return False, why, ga, gb
