@@ -94,19 +94,22 @@ class Grounder:
     # -- scenes ------------------------------------------------------------------
     def scene(self, entries: Iterable[str]) -> tuple[SceneObject, ...]:
         """Scene objects from catalog ids or plain names (a name the catalog knows is its object)."""
-        out: list[SceneObject] = []
-        for entry in entries:
-            entry = entry.strip()
-            if not entry:
-                continue
-            if entry in self.catalog:
-                out.append(self._catalog_object(entry))
-                continue
+        cleaned = [e.strip() for e in entries if e.strip()]
+        known: dict[str, str | None] = {}
+        for entry in cleaned:
             name = normalize_name(entry.replace("_", " "))
-            known = self.index.names.get(tuple(name.split()))
-            if known is not None:
-                out.append(self._catalog_object(known))
+            known[entry] = entry if entry in self.catalog else self.index.names.get(tuple(name.split()))
+        count: dict[str | None, int] = {}
+        for cid in known.values():
+            count[cid] = count.get(cid, 0) + 1
+        out: list[SceneObject] = []
+        for entry in cleaned:
+            cid = known[entry]
+            if cid is not None and (entry == cid or count[cid] == 1):
+                out.append(self._catalog_object(cid))
             else:
+                # a plain name; two names for one catalog object ("plate", "dish") stay two objects
+                name = normalize_name(entry.replace("_", " "))
                 out.append(SceneObject(name, (name,)))
         return tuple(out)
 
@@ -244,12 +247,15 @@ class Grounder:
         return None
 
     def _fits_catalog(self, phrase: NounPhrase, object_id: str) -> bool:
+        """A free phrase that describes a catalog object: its head and every modifier fit."""
         if object_id not in self.catalog:
             return False
         names = [normalize_name(n).split() for n in self.catalog.get(object_id).names]
         if not any(_singular(n[-1]) == _singular(phrase.head) for n in names):
             return False
-        return self.index.compatible(object_id, list(phrase.modifiers))
+        words = {w for n in names for w in n}
+        unknown = [w for w in phrase.modifiers if w not in words and w not in _COLOURS and w not in lx.SIZE_WORDS]
+        return not unknown and self.index.compatible(object_id, list(phrase.modifiers))
 
     def _same_text(self, a: NounPhrase, b: NounPhrase, id_a: str | None, id_b: str | None) -> bool:
         """Two phrases at least one of which is free: by head noun, else by embedding."""

@@ -162,6 +162,8 @@ def _resolve_pronouns(clauses: list[Clause]) -> None:
                     ref.object_id = focus
                     if focus is None:
                         pending.append(ref)
+                elif c.kind == "preamble" and not c.bare and ref.object_id is not None:
+                    focus = ref.object_id  # "move to the ladle, grasp it"
     later = next((r.object_id for c in clauses for r in c.bare if not r.pronoun and r.object_id), None)
     for ref in pending:
         ref.object_id = later
