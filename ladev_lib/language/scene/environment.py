@@ -60,6 +60,14 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     if factor is not None:
         value = float(factor.group(1) or factor.group(2))
         return {"op": "set_lighting", "intensity_delta": round(value - 1.0, 4)}
+    text = re.sub(rf"({NUM})\s*(?:percent|per cent|pct)\b", r"\1%", text)
+    text = re.sub(r"\b(?:a )?quarter\b", " 25% ", text)
+    text = re.sub(r"\b(?:a )?fifth\b", " 20% ", text)
+    text = re.sub(r"\b(?:a )?third\b", " 33% ", text)
+    if re.search(r"\bhalf as (?:bright|light|strong|intense)\b", text):
+        return {"op": "set_lighting", "intensity_delta": -0.5}
+    if re.search(r"\b(?:twice|double) as (?:bright|light|strong|intense)\b|\bdoubled?\b", text):
+        return {"op": "set_lighting", "intensity_delta": 1.0}
     text = re.sub(r"\b(?:by )?half\b|\bhalved\b", " 50% ", text)
     nums = [m for m in re.finditer(rf"(?<![\w.@]){NUM}(?:\s*(%))?", text)]
     darker, brighter = DARKER.search(text), BRIGHTER.search(text)

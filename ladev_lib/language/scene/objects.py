@@ -80,13 +80,17 @@ def find_region(text: str) -> tuple[str, str] | None:
     for m in re.finditer(r"\b(left|right)(?:\s*(?:hand|-hand))?\b", text):
         horizontal = m.group(1)
         spans.append(m.span())
+    # From the viewer's side of the table: the far side is the back, the near side the front.
     for m in re.finditer(
-        r"\b(front|back|rear|top|bottom|far|far side|far end|near side|near the robot|close to the robot|"
-        r"away from the robot|in front|at the back)\b",
+        r"\b(away from the robot|far from the robot|near the robot|close to the robot|far side|far end|far edge|"
+        r"near side|near edge|front edge|back edge|rear edge|far|front|back|rear|top|bottom|in front|at the back)\b",
         text,
     ):
         word = m.group(1)
-        vertical = "back" if word in ("back", "rear", "bottom", "near side", "near the robot", "close to the robot", "at the back") else "front"
+        vertical = "back" if word in (
+            "back", "rear", "bottom", "near the robot", "close to the robot", "at the back", "far side", "far end",
+            "far edge", "back edge", "rear edge", "far", "top",
+        ) else "front"
         spans.append(m.span())
     centre = re.search(r"\b(middle|center|centre|centered|centred|central)\b", text)
     if horizontal is None and vertical is None and centre is None:
@@ -110,7 +114,9 @@ def unknown_phrase(text: str) -> str | None:
     run: list[str] = []
     introduced = False
     previous = ""
-    for w in words:
+    content = [w for w in words if not w.startswith("@") and w not in FILLERS and not re.fullmatch(r"\d+(?:\.\d+)?", w)]
+    end = len(words)
+    for i, w in enumerate(words):
         if w.startswith("@"):
             run = []
             previous = w
@@ -118,17 +124,91 @@ def unknown_phrase(text: str) -> str | None:
         if w in SCENE_NOUNS:
             return None
         if run and (w in STOP_PREPOSITIONS or w in ("that", "which", "who", "is", "are")):
+            end = i
             break
         if w in FILLERS or re.fullmatch(r"\d+(?:\.\d+)?", w):
             if not run:
-                if w in ("a", "an", "the", "another", "add", "is", "are", "some") or re.fullmatch(r"\d+", w):
+                # introduced as a new object: "a/an/my X", "2 X", "add X" (not "the X", a reference)
+                if w in ("a", "an", "another", "add", "my", "our", "spawn") or re.fullmatch(r"\d+", w):
                     introduced = True
                 previous = w
                 continue
+            end = i
             break
-        if not run and not introduced and previous not in ("a", "an", "the"):
-            introduced = False
         run.append(w)
-    if not run or not introduced or len(run) > 4:
+    if not run or len(run) > 3 or len("".join(run)) < 3:
+        return None
+    # the phrase must be all the clause names: nothing but fillers after it
+    if any(w not in FILLERS and not w.startswith("@") and w not in STOP_PREPOSITIONS for w in words[end:]):
+        return None
+    bare_item = len(content) == len(run) and len(words) <= len(run) + 1
+    if not introduced and not bare_item:
         return None
     return " ".join(run)
+
+
+def singular(phrase: str) -> str:
+    """The phrase with its last word in the singular ("soda cans" -> "soda can", "boxes" -> "box")."""
+    words = phrase.split()
+    w = words[-1]
+    if re.search(r"(?:ch|sh|ss|x|z)es$", w):
+        w = w[:-2]
+    elif w.endswith("ies") and len(w) > 4:
+        w = w[:-3] + "y"
+    elif w.endswith("s") and not w.endswith("ss"):
+        w = w[:-1]
+    return " ".join([*words[:-1], w])
+
+
+_GROUP = re.compile(
+    r"\b(?P<n>[2-9])\s+(?P<np>(?:[a-z]+\s+)?[a-z]+?)(?:es|s)\b(?P<sep>\s*(?:,|:|-|\()\s*)"
+    r"(?=(?:a|an|one|1|the)\s)"
+)
+_BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]+?(?:es|s)\b")
+_GENERIC = {"object", "item", "thing", "prop", "piece", "distractor", "random object", "other object"}
+
+
+def expand_groups(text: str) -> str:
+    """Plural groups spelled out item by item, as a person means them.
+
+    "2 cubes, a green one and a yellow one" -> "a green cube and a yellow cube";
+    "2 soda cans, a sprite and a 7up" -> "a sprite and a 7up" (the items are
+    the group); "the green one" after "2 blocks" -> "the green block". Counts
+    of generic nouns ("3 objects: ...") are totals and stay.
+    """
+    out = text
+    heads: list[tuple[int, str]] = []
+    # "those 2 blocks": the objects already named (by the task), not more of them
+    text = _BACK_GROUP.sub(lambda m: " " + m.group(0).split(None, 1)[1] + "@", text)
+    out = re.sub(r"\b[2-9]\s+(?:[a-z]+\s+)?[a-z]+@", " ", text)
+    for m in list(_GROUP.finditer(text))[::-1]:
+        np_ = m.group("np").strip()
+        if np_ in _GENERIC or np_.split()[-1] in {w.split()[-1] for w in _GENERIC}:
+            continue
+        out = out[: m.start()] + " " + out[m.end():]
+    for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", out):
+        np_ = singular(m.group(2).strip())
+        if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
+            heads.append((m.end(), np_))
+    if not heads:
+        # the group was removed: its noun is still the antecedent of "a green one"
+        for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))@?(?![a-z])", text):
+            np_ = singular(m.group(2).strip())
+            if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
+                heads.append((0, np_))
+
+    def head_before(pos: int) -> str | None:
+        found = [h for p, h in heads if p <= pos]
+        return found[-1] if found else (heads[0][1] if heads else None)
+
+    def one(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        return f"{m.group(1)} {m.group(2)} {head}"
+
+    return re.sub(
+        r"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:green|yellow|red|blue|pink|purple|orange|white|black|brown|"
+        r"small|large|big|little|light blue|dark|other))\s+(?:one|1)\b",
+        one, out,
+    )

@@ -21,6 +21,7 @@ from ladev_lib.language.scene.environment import (
 from ladev_lib.language.scene.instruction import parse_instruction
 from ladev_lib.language.scene.objects import (
     canonical_name,
+    expand_groups,
     find_region,
     find_relation,
     quantity,
@@ -94,6 +95,10 @@ class _Reader:
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
         self._object_set(sentence)
+        # "towel: back" / "towel = left": a position given as a value
+        sentence = re.sub(
+            r"\s*[:=]\s*(?=(?:left|right|front|back|center|centre|middle|rear|far side|near side)\b)", " at the ", sentence
+        )
         # "objects: 2" would be cut apart at the colon below: read it first.
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
@@ -213,13 +218,35 @@ class _Reader:
             position = position or {"region": region}
             consumed = True
 
-        # Named objects, with quantities ("2 apples").
+        # Named objects, with quantities ("2 apples"). A definite mention of an
+        # object already described ("the bowl in the middle", "towel: back") is
+        # that object again, not another one.
         found: list[_ObjectOp] = []
-        for m in list(self.vocab.name_pattern.finditer(text)):
+        matches = list(self.vocab.name_pattern.finditer(text))
+        for m in matches:
             name = canonical_name(self.vocab, m.group(0))
-            qty = quantity(text[: m.start()])
+            before = text[: m.start()]
+            earlier = [o for o in self.out.objects if o.mention == name]
+            definite = re.search(r"\b(?:the|that|this|its|both|said|same)\s+(?:\w+\s+)?$", before) is not None
+            bare_update = (
+                not re.search(r"\b(?:a|an|another|one|\d+|add|plus|and|also)\s+(?:\w+\s+)?$", before)
+                and len(matches) == 1 and position is not None and not found
+            )
+            if earlier and (definite or bare_update):
+                target = earlier[-1] if position is None else next(
+                    (o for o in reversed(earlier) if o.position is None), earlier[-1]
+                )
+                if position is not None:
+                    target.position = position
+                    position = None
+                self.out.recognised += 1
+                last = target
+                continue
+            qty = quantity(before)
             for _ in range(qty):
                 found.append(_ObjectOp(name))
+        if matches and not found:
+            return last
         text_wo_names = self.vocab.name_pattern.sub(" @n@ ", text)
         if not found:
             for m in self.vocab.category_pattern.finditer(text):
@@ -265,7 +292,7 @@ def read_description(
     (a type alone). Task statements are taken out of the text either way.
     """
     found = find_task(description or "", vocab.ids)
-    text = normalize_text(found.rest, vocab)
+    text = expand_groups(normalize_text(found.rest, vocab))
     protected, slots = protect_coordinates(text)
     reading = _Reader(vocab, slots).read(protected)
 

@@ -52,6 +52,12 @@ AGENT_MODAL = re.compile(
     rf"\b{_AGENT}\s+(?:\w+\s+)?{_MODAL}\s+(?:now\s+|then\s+|first\s+|simply\s+|just\s+|only\s+|also\s+)?(?={_VERB}\b)",
     re.IGNORECASE,
 )
+AGENT_DOES = re.compile(
+    r"\b(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator)\s+(?:then\s+|just\s+|simply\s+)?"
+    r"(?=(?:picks\s+up|picks|grabs|grasps|lifts|takes|puts|places|sets|moves|brings|stacks|drops|inserts|pushes|"
+    r"slides|carries|lays|rests|gets|transfers)\b)",
+    re.IGNORECASE,
+)
 WANT_TO = re.compile(
     rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
     rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)",
@@ -126,6 +132,7 @@ def _cuts(candidate: str) -> list[str]:
 
 
 def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+    candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
     for text in _cuts(candidate.strip().strip(")(\"'`*").strip()):
         if not text:
             continue
@@ -143,14 +150,15 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
     for i, (s, e) in enumerate(spans):
         seg = text[s:e]
         marked = None
-        for pattern in (LABEL, AGENT_MODAL, WANT_TO):
+        for pattern in (LABEL, AGENT_MODAL, WANT_TO, AGENT_DOES):
             m = pattern.search(seg)
             if m is not None and (marked is None or m.end() < marked):
                 marked = m.end()
         if marked is not None:
             frame = _read(seg[marked:], reader)
             if frame is not None:
-                start = s + (LABEL.search(seg) or AGENT_MODAL.search(seg) or WANT_TO.search(seg)).start()  # type: ignore[union-attr]
+                label = LABEL.search(seg)
+                start = s + label.start() if label is not None else s
                 found.append(TaskStatement(start, e, seg[marked:].strip(), frame, 2))
                 continue
             if LABEL.search(seg) and seg[marked:].strip():
@@ -175,10 +183,13 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
 
 
 def _mention(phrase: NounPhrase | None, names: Mapping[str, str]) -> str | None:
+    """The catalog name a phrase grounds to when its head noun is in that name; else the phrase as written."""
     if phrase is None:
         return None
     if phrase.object_id is not None and phrase.object_id in names:
-        return names[phrase.object_id]
+        name = names[phrase.object_id]
+        if phrase.head.lower() in name.split():
+            return name
     return phrase.text
 
 

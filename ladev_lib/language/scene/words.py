@@ -127,6 +127,10 @@ class Vocabulary:
             names.add(display)
             for s in o.get("synonyms", ()) or ():
                 names.add(_norm_name(str(s)))
+        for n in list(names):
+            spaced = re.sub(r"(?<=\d)(?=[a-z])", " ", n)
+            if spaced != n:
+                names.add(spaced)
             ids[str(o["id"]).lower()] = display
             if o.get("category"):
                 categories.add(str(o["category"]).replace("_", " "))
