@@ -113,13 +113,11 @@ def unknown_phrase(text: str) -> str | None:
     words = re.findall(r"@n@|@\w+@|[a-z][a-z0-9]*|\d+(?:\.\d+)?", text)
     run: list[str] = []
     introduced = False
-    previous = ""
     content = [w for w in words if not w.startswith("@") and w not in FILLERS and not re.fullmatch(r"\d+(?:\.\d+)?", w)]
     end = len(words)
     for i, w in enumerate(words):
         if w.startswith("@"):
             run = []
-            previous = w
             continue
         if w in SCENE_NOUNS:
             return None
@@ -131,7 +129,6 @@ def unknown_phrase(text: str) -> str | None:
                 # introduced as a new object: "a/an/my X", "2 X", "add X" (not "the X", a reference)
                 if w in ("a", "an", "another", "add", "my", "our", "spawn") or re.fullmatch(r"\d+", w):
                     introduced = True
-                previous = w
                 continue
             end = i
             break

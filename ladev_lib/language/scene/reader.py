@@ -73,6 +73,7 @@ class _Reader:
         self.slots = slots
         self.out = _Reading()
         self._previous_domain: str | None = None
+        self._listy = True
 
     def read(self, text: str) -> _Reading:
         domain_hint: str | None = None
@@ -95,6 +96,14 @@ class _Reader:
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
         self._object_set(sentence)
+        # An unknown noun is an object only where the sentence lists objects (names a catalog
+        # object, counts objects or adds one), not in chat around the scene.
+        self._listy = bool(
+            self.vocab.name_pattern.search(sentence)
+            or COUNT_TOTAL.search(f" {sentence} ")
+            or re.search(r"^\s*(?:\+|add|spawn|place|objects?|objs?|items?)\b|\b(?:objects?|items?)\s*[:=]", sentence)
+            or hint == "objects"
+        )
         # "towel: back" / "towel = left": a position given as a value
         sentence = re.sub(
             r"\s*[:=]\s*(?=(?:left|right|front|back|center|centre|middle|rear|far side|near side)\b)", " at the ", sentence
@@ -254,7 +263,7 @@ class _Reader:
                 qty = quantity(m.group(0)[: m.start("cat") - m.start()])
                 found.extend(_ObjectOp(cat) for _ in range(qty))
             text_wo_names = self.vocab.category_pattern.sub(" @n@ ", text_wo_names)
-        if not found:
+        if not found and self._listy:
             unknown = unknown_phrase(text_wo_names)
             if unknown:
                 found.append(_ObjectOp(unknown, unknown=True))
