@@ -99,12 +99,12 @@ def command(
     with click.progressbar(length=len(rows), label=f"validating {len(rows)} pairs") as bar:
         for start in range(0, len(rows), CHUNK):
             chunk = rows[start : start + CHUNK]
-            pairs = [((r.get("original") or ""), (r.get("candidate") or "")) for r in chunk]
+            batch = [((r.get("original") or ""), (r.get("candidate") or "")) for r in chunk]
             try:
-                verdicts += setup.validator.validate_pairs(pairs, scenes[start : start + CHUNK])
+                verdicts += setup.validator.validate_pairs(batch, scenes[start : start + CHUNK])
                 errors += [None] * len(chunk)
             except Exception:  # one bad row must not sink the others: retry one by one
-                for k, pair in enumerate(pairs):
+                for k, pair in enumerate(batch):
                     try:
                         verdicts += setup.validator.validate_pairs([pair], [scenes[start + k]])
                         errors.append(None)

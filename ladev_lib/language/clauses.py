@@ -379,9 +379,7 @@ _FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
 """Head nouns that name a part of the object before them ("the cabinet top")."""
 _NOT_NOUNS = frozenset(
-    "how about what where why when whether if as mind let please kindly thanks okay ok "
-    "task job goal aim objective mission instruction instructions request idea plan step steps order "
-    "favor favour time moment chance way thing things something anything everything nothing".split()
+    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing"]
 )
 """Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
 

@@ -239,7 +239,7 @@ def _tag_word(
 
 
 _STATIVE_PARTICIPLES = frozenset(
-    "sitting resting lying standing placed located positioned kept situated lying sat laid stored".split()
+    ["sitting", "resting", "lying", "standing", "placed", "located", "positioned", "kept", "situated", "lying", "sat", "laid", "stored"]
 )
 """Participles that, right after a noun phrase, say where it is rather than ask for an action."""
 
