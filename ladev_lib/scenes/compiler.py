@@ -264,7 +264,12 @@ class _Compilation:
                 self.notes.append(f"pick_up has no target; {task.target!r} ignored")
             return
         if task.target:
-            tgt = self._ensure(self.resolve(task.target, "task target"), "target", task.target)
+            tres = self.resolve(task.target, "task target")
+            if tres.obj is not None and src.obj is not None and tres.obj.id == src.obj.id and not any(
+                s is not src and s.obj is not None and s.obj.id == tres.obj.id for s in self.slots
+            ):
+                raise _Reject(f"impossible task: source and target are the same object ({task.target!r})")
+            tgt = self._ensure(tres, "target", task.target)
             if tgt is src:
                 raise _Reject(f"impossible task: source and target are the same object ({task.target!r})")
         else:

@@ -120,7 +120,10 @@ def unknown_phrase(text: str) -> str | None:
             run = []
             continue
         if w in SCENE_NOUNS:
-            return None
+            if run:
+                end = i
+                break
+            continue
         if run and (w in STOP_PREPOSITIONS or w in ("that", "which", "who", "is", "are")):
             end = i
             break
@@ -138,7 +141,7 @@ def unknown_phrase(text: str) -> str | None:
     # the phrase must be all the clause names: nothing but fillers after it
     if any(w not in FILLERS and not w.startswith("@") and w not in STOP_PREPOSITIONS for w in words[end:]):
         return None
-    bare_item = len(content) == len(run) and len(words) <= len(run) + 1
+    bare_item = len(content) == len(run) and len(words) <= len(run) + 1 and len(run) <= 2
     if not introduced and not bare_item:
         return None
     return " ".join(run)

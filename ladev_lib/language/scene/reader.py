@@ -25,6 +25,7 @@ from ladev_lib.language.scene.objects import (
     find_region,
     find_relation,
     quantity,
+    singular,
     unknown_phrase,
 )
 from ladev_lib.language.scene.statements import find_task
@@ -101,7 +102,9 @@ class _Reader:
         self._listy = bool(
             self.vocab.name_pattern.search(sentence)
             or COUNT_TOTAL.search(f" {sentence} ")
-            or re.search(r"^\s*(?:\+|add|spawn|place|objects?|objs?|items?)\b|\b(?:objects?|items?)\s*[:=]", sentence)
+            or re.search(
+                r"^\s*(?:\+|add|spawn|place|objects?|objs?|items?|a|an|\d+)\b|\b(?:objects?|items?)\s*[:=]", sentence
+            )
             or hint == "objects"
         )
         # "towel: back" / "towel = left": a position given as a value
@@ -266,7 +269,10 @@ class _Reader:
         if not found and self._listy:
             unknown = unknown_phrase(text_wo_names)
             if unknown:
-                found.append(_ObjectOp(unknown, unknown=True))
+                at = text_wo_names.find(unknown)
+                qty = quantity(text_wo_names[:at]) if at >= 0 else 1
+                mention = singular(unknown) if qty > 1 else unknown
+                found.extend(_ObjectOp(mention, unknown=True) for _ in range(qty))
 
         if found:
             if position is not None:
@@ -329,7 +335,7 @@ def read_description(
         return out
     elif task:
         out["task"] = {"type": task}
-    recognised_task = 1 if out.get("task") is not None else 0
+    recognised_task = 1 if stated is not None else 0  # a description that states only its task is read
 
     if description.strip() and reading.recognised + recognised_task == 0:
         out["error"] = "no object, object count, position, lighting or camera setting found in the description"

@@ -52,6 +52,7 @@ FILLERS = {
     "sim", "simulation", "simulated", "test", "tabletop", "task", "instruction",
     "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
+    "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "okay", "ok", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
 }
 STOP_PREPOSITIONS = {
     "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
