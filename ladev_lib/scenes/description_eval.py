@@ -260,6 +260,11 @@ def score_row(row: dict[str, Any], view: CompileView, names: _Names) -> RowScore
     else:
         # no scene is expected: the count and the required objects are judged on the reading
         read_ids = [names.id_of(op.object) for op in view.operations.objects] if view.operations else []
+        task_op = view.operations.task if view.operations is not None else None
+        for mention in (task_op.source, task_op.target) if task_op is not None else ():
+            oid = names.id_of(mention)
+            if oid is not None and oid not in read_ids:
+                read_ids.append(oid)  # the task's objects are the scene's (added when not described)
         read_ok = [i for i in read_ids if i is not None]
         n_read = len(read_ok) + sum(1 for op in (view.operations.objects if view.operations else []) if not op.object)
         if n_read != exp["n_objects"]:

@@ -76,6 +76,27 @@ class PlacementError(ValueError):
     """The objects cannot be placed without collision in the workspace."""
 
 
+def _place_fixed(
+    requests: list[PlacementRequest],
+    fixed: list[int],
+    yaws: dict[int, float],
+    grow: float,
+    placed: dict[int, Placed],
+    prints: list[Footprint],
+) -> str | None:
+    """Place the objects at given coordinates; the first collision, described, or None."""
+    for i in fixed:
+        r = requests[i]
+        assert r.x is not None and r.y is not None
+        fp = footprint(r.obj, r.x, r.y, yaws[i], grow)
+        for j, other in zip(placed, prints, strict=True):
+            if overlaps(fp, other):
+                return f"{r.obj.display_name!r} at ({r.x:.2f}, {r.y:.2f}) overlaps {requests[j].obj.display_name!r}"
+        placed[i] = Placed(r.obj, r.x, r.y, yaws[i])
+        prints.append(fp)
+    return None
+
+
 def place_objects(
     requests: list[PlacementRequest],
     workspace_x: tuple[float, float],
@@ -91,19 +112,16 @@ def place_objects(
 
     fixed = [i for i, r in enumerate(requests) if r.x is not None and r.y is not None]
     free = [i for i, r in enumerate(requests) if i not in fixed]
-    for i in fixed:
-        r = requests[i]
-        assert r.x is not None and r.y is not None
-        yaw = r.yaw_deg if r.yaw_deg is not None else float(rng.uniform(-180, 180))
-        fp = footprint(r.obj, r.x, r.y, yaw, grow)
-        for j, other in zip(placed, prints, strict=True):
-            if overlaps(fp, other):
-                raise PlacementError(
-                    f"{r.obj.display_name!r} at ({r.x:.2f}, {r.y:.2f}) overlaps "
-                    f"{requests[j].obj.display_name!r}"
-                )
-        placed[i] = Placed(r.obj, r.x, r.y, yaw)
-        prints.append(fp)
+    yaws = {i: requests[i].yaw_deg if requests[i].yaw_deg is not None else float(rng.uniform(-180, 180)) for i in fixed}
+    clash = _place_fixed(requests, fixed, yaws, grow, placed, prints)
+    if clash is not None:
+        # Objects at given coordinates with no given yaw may turn square to the table to clear
+        # each other (only tried when the drawn yaws collide: scenes that placed, place the same).
+        placed.clear()
+        prints.clear()
+        square = {i: (requests[i].yaw_deg if requests[i].yaw_deg is not None else 0.0) for i in fixed}
+        if _place_fixed(requests, fixed, square, grow, placed, prints) is not None:
+            raise PlacementError(clash)
 
     # Largest footprints first: they are the hardest to fit.
     # Objects confined to a region go before the others of the same size class.

@@ -41,6 +41,11 @@ def find_relation(vocab: Vocabulary, text: str) -> tuple[dict[str, Any], str] | 
     ]
     for pattern, relation in relations:
         for m in re.finditer(pattern, text):
+            if relation == "near" and re.search(
+                r"\b(?:throw|toss|put|add|bring|chuck|drop|pop|set|mix|stick|place|lay|join|come|came|fill)s?\s*$",
+                text[: m.start()],
+            ):
+                continue  # "throw in a red bull can": a verb particle, not a place
             rest = text[m.end():]
             ref = _reference(vocab, rest, strict=(m.group(0).strip() in ("on", "in", "onto", "inside", "inside of", "on top of", "by")))
             if ref is None:

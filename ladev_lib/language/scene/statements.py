@@ -45,7 +45,8 @@ LABEL = re.compile(
     r"(?:^|(?<=[\s(\[{|;,.:•*-]))(?:the\s+)?(?:main\s+|actual\s+|robot(?:'s)?\s+|its\s+)?"
     r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt)"
     r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
-    r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+will\s+be\s+(?:to\s+)?|\s+(?=" + _VERB + r"\b))",
+    r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+(?:will|should|would|shall|must)\s+be\s+(?:to\s+)?|"
+    r"\s+(?=" + _VERB + r"\b))",
     re.IGNORECASE,
 )
 AGENT_MODAL = re.compile(
@@ -55,12 +56,14 @@ AGENT_MODAL = re.compile(
 AGENT_DOES = re.compile(
     r"\b(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator)\s+(?:then\s+|just\s+|simply\s+)?"
     r"(?=(?:picks\s+up|picks|grabs|grasps|lifts|takes|puts|places|sets|moves|brings|stacks|drops|inserts|pushes|"
-    r"slides|carries|lays|rests|gets|transfers)\b)",
+    r"slides|carries|lays|rests|gets|transfers|picking|grabbing|grasping|lifting|taking|putting|placing|setting|"
+    r"moving|bringing|stacking|dropping|inserting|pushing|sliding|carrying|laying|resting|getting|transferring)\b)",
     re.IGNORECASE,
 )
 WANT_TO = re.compile(
     rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
-    rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)",
+    rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)"
+    rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)",
     re.IGNORECASE,
 )
 BACK_LABEL = re.compile(
@@ -82,6 +85,10 @@ _PLACE_WORDS = frozenset(
 _SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—")
 
 
+_CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
+_RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
+
+
 @dataclass(frozen=True)
 class TaskStatement:
     """One statement of the task, where it is in the text and how strongly it is marked."""
@@ -92,6 +99,8 @@ class TaskStatement:
     frame: Frame
     strength: int
     """2: labelled or about the robot; 1: a bare command."""
+    replacement: str = " . "
+    """What the statement leaves in the text (the object, when a relative clause about it follows)."""
 
 
 @dataclass
@@ -131,8 +140,34 @@ def _cuts(candidate: str) -> list[str]:
     return out
 
 
+_ARROW = re.compile(
+    r"^\s*(?P<src>[^>]+?)\s*(?:->|→|=>)\s*(?P<tgt>[^(]+?)\s*\(\s*(?P<rel>put\s+in|put\s+on|in|into|on|onto|near|move\s+near)\s*\)",
+    re.IGNORECASE,
+)
+
+
+def _arrow(text: str) -> str:
+    """'marker -> mug (put in)' -> 'put marker in mug'."""
+    m = _ARROW.match(text)
+    if m is None:
+        return text
+    rel = m.group("rel").lower().split()[-1]
+    rel = {"into": "in", "onto": "on"}.get(rel, rel)
+    verb = "move" if rel == "near" else "put"
+    return f"{verb} {m.group('src')} {rel} {m.group('tgt')}"
+
+
 def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
     candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
+    candidate = _arrow(candidate)
+    candidate = re.sub(
+        r"^\s*(pick|grabb|grasp|lift|tak|putt|plac|sett|mov|bring|stack|dropp|insert|push|slid|carry|lay|rest|gett)ing\b",
+        lambda m: {"grabb": "grab", "putt": "put", "sett": "set", "dropp": "drop", "gett": "get", "tak": "take",
+                   "plac": "place", "mov": "move", "slid": "slide"}.get(m.group(1).lower(), m.group(1)),
+        candidate, flags=re.IGNORECASE,
+    )
+    candidate = re.sub(r"^\s*(\w+?)(?<!s)s\b", lambda m: m.group(1) if re.fullmatch(_VERB, m.group(1), re.IGNORECASE) else m.group(0), candidate)
+    candidate = re.sub(r"^\s*picks\s+up\b", "pick up", candidate, flags=re.IGNORECASE)
     for text in _cuts(candidate.strip().strip(")(\"'`*").strip()):
         if not text:
             continue
@@ -158,8 +193,19 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
             frame = _read(seg[marked:], reader)
             if frame is not None:
                 label = LABEL.search(seg)
-                start = s + label.start() if label is not None else s
-                found.append(TaskStatement(start, e, seg[marked:].strip(), frame, 2))
+                if label is not None:
+                    start = s + label.start()
+                else:
+                    # from the clause the statement starts in ("A and B at the back, then have the robot ...")
+                    bounds = [m.end() for m in _CLAUSE_END.finditer(seg[:marked])]
+                    first = min((m.start() for p in (AGENT_MODAL, WANT_TO, AGENT_DOES) if (m := p.search(seg))), default=0)
+                    before = [b for b in bounds if b <= first]
+                    start = s + (before[-1] if before else 0)
+                end, keep = e, " . "
+                rel = _RELATIVE.search(seg, marked)
+                if rel is not None and frame.object is not None:
+                    end, keep = s + rel.start(), f" . the {frame.object.text} "
+                found.append(TaskStatement(start, end, seg[marked:].strip(), frame, 2, keep))
                 continue
             if LABEL.search(seg) and seg[marked:].strip():
                 # a labelled task that is none of the four forms is still the task statement
@@ -211,8 +257,9 @@ def find_task(
     chosen = strong[-1] if strong else (weak[-1] if weak else None)
     removed = [s for s in statements if s.strength in (2, 0, -1)] + ([chosen] if chosen is not None else [])
     rest = text
-    for st in sorted({(s.start, s.end) for s in removed}, reverse=True):
-        rest = rest[: st[0]] + " . " + rest[st[1]:]
+    spans = {(s.start, s.end): s.replacement for s in removed}
+    for (a, b), keep in sorted(spans.items(), reverse=True):
+        rest = rest[:a] + keep + rest[b:]
     if chosen is None:
         if unreadable:
             return FoundTask(None, rest, unreadable[-1].text, statements)

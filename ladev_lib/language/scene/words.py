@@ -53,6 +53,7 @@ FILLERS = {
     "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
     "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "okay", "ok", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
+    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "honestly", "thank",
 }
 STOP_PREPOSITIONS = {
     "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
