@@ -28,6 +28,8 @@ from ladev_lib.language.scene.words import Vocabulary, normalize_text
 RULE_MODULES = (
     "ladev_lib.language.scene",
     "ladev_lib.language.scene.words",
+    "ladev_lib.language.scene.corrections",
+    "ladev_lib.language.scene.statements",
     "ladev_lib.language.scene.objects",
     "ladev_lib.language.scene.environment",
     "ladev_lib.language.scene.instruction",

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ladev_lib.language.frames import read_instruction
+from ladev_lib.language.scene.corrections import apply_corrections
 from ladev_lib.language.scene.environment import (
     BRIGHTER,
     CAMERA_WORDS,
@@ -307,9 +308,16 @@ def read_description(
     (a type alone). Task statements are taken out of the text either way.
     """
     found = find_task(description or "", vocab.ids)
-    text = expand_groups(normalize_text(found.rest, vocab))
+    text, dropped = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
     reading = _Reader(vocab, slots).read(protected)
+    for name in dropped:
+        canonical = canonical_name(vocab, name)
+        idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]
+        if idx:
+            del reading.objects[idx[-1]]
+            if reading.total is not None:
+                reading.total -= 1  # "three objects: a, b and c. drop c": two
 
     out: dict[str, Any] = {"schema_version": 1, "operations": []}
     if reading.object_set:

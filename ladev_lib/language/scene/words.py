@@ -54,6 +54,7 @@ FILLERS = {
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
     "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "okay", "ok", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
     "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "honestly", "thank",
+    "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
 STOP_PREPOSITIONS = {
     "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
