@@ -205,8 +205,8 @@ class Grounder:
         for g in (ga, gb):
             if g.how in ("ambiguous", "absent"):
                 return False, g.reason, ga, gb
-        colours_a = {w for w in a.modifiers if w in _COLOURS}
-        colours_b = {w for w in b.modifiers if w in _COLOURS}
+        colours_a = {_COLOUR_ALIASES.get(w, w) for w in a.modifiers if w in _COLOURS}
+        colours_b = {_COLOUR_ALIASES.get(w, w) for w in b.modifiers if w in _COLOURS}
         if colours_a and colours_b and not colours_a & colours_b:
             return False, f"'{a.text}' -> '{b.text}' (another colour)", ga, gb
         why = self._qualifiers_differ(a, b, scene)
@@ -264,8 +264,8 @@ class Grounder:
         if _singular(a.head) == _singular(b.head):
             ma, mb = _descriptive(a.modifiers), _descriptive(b.modifiers)
             return ma <= mb or mb <= ma
-        colours_a = {w for w in a.modifiers if w in _COLOURS}
-        colours_b = {w for w in b.modifiers if w in _COLOURS}
+        colours_a = {_COLOUR_ALIASES.get(w, w) for w in a.modifiers if w in _COLOURS}
+        colours_b = {_COLOUR_ALIASES.get(w, w) for w in b.modifiers if w in _COLOURS}
         if colours_a and colours_b and colours_a != colours_b:
             return False
         if self.embedder is None:
@@ -278,6 +278,7 @@ class Grounder:
 
 
 _COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
+_COLOUR_ALIASES = {"violet": "purple", "gray": "grey"}
 
 
 def _with_places(q: Qualifier) -> Qualifier:
