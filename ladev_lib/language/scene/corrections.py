@@ -29,6 +29,10 @@ _MARKER = re.compile(
     r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|"
     r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be)\b[\s,:]*)*"
 )
+_DIRECTIONS = (
+    "counterclockwise", "anticlockwise", "clockwise", "left", "right", "up", "down", "forward", "backward", "back",
+    "closer", "farther", "higher", "lower", "brighter", "darker", "dimmer",
+)
 _CLAUSE_START = re.compile(r"[:;.!?\n]|—|\s-+\s|\bthen\b")
 _KEEP = re.compile(r"\b(?:camera|cam|view|light|lights|lighting|brightness)\b")
 _REMOVE_VERB = (
@@ -55,6 +59,15 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
             taken = out[start:m.start()]
         keep = " ".join(sorted({k.group(0) for k in _KEEP.finditer(taken)}))
         after = out[m.end():]
+        short = re.match(r"\s*([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)
+        if short is not None and short.group(1).split()[0] in _DIRECTIONS:
+            # "roll 3 degrees clockwise - no, counterclockwise": only the direction changes
+            word = short.group(1).split()[0]
+            olds = [w for w in _DIRECTIONS if re.search(rf"\b{w}\b", taken)]
+            if olds:
+                fixed = re.sub(rf"\b{olds[0]}\b", word, taken, count=1)
+                out = out[:start] + fixed + after[short.end():]
+                continue
         named = vocab.name_pattern.search(taken)
         if named is not None:
             # "a strawberry near the plate - no wait, put it on the right": 'it' is the strawberry

@@ -126,7 +126,9 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
             translation = [a + b * scale for a, b in zip(translation, values, strict=True)]
         moved = True
         text = text.replace(key, " ")
-    for part in re.split(r"\band\b|,|\bthen\b|\s\+\s", text):
+    for part in re.split(r"\band\b|,|\bthen\b|\bbut\b|\s\+\s", text):
+        if re.search(r"\b(?:dont|do not|not|never|without|no)\s+(?:\w+\s+)?(?:rotat|tilt|pan|roll|yaw|pitch|turn|mov|shift|translat)", part):
+            continue  # "don't rotate it"
         t, r, ok = camera_motion(part)
         if ok:
             translation = [a + b for a, b in zip(translation, t, strict=True)]
@@ -153,10 +155,15 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
     # roll + turns clockwise seen from behind. The spec's frame is the workspace's
     # (x away from the robot, y to its left; yaw + pans left, pitch + tilts down).
     cm_default = re.search(r"\(\s*cm\s*\)|\bin cm\b|\bcm\b", part) is not None
+    worded = re.search(
+        r"\b(?:left|right|up|upward|down|downward|clockwise|counterclockwise|counter clockwise|anticlockwise)\b", part
+    )
     for m in re.finditer(
         rf"\b(dx|dy|dz|x|y|z|roll|pitch|yaw)\s*[:=]?\s*({NUM})\s*(cm|mm|m|deg|degrees?)?(?![\w.])", part
     ):
         axis, value, unit = m.group(1), float(m.group(2)), m.group(3)
+        if axis in ("roll", "pitch", "yaw") and worded is not None and value >= 0:
+            continue  # "roll 3 degrees counterclockwise": the words give the sense
         if axis in ("roll", "pitch", "yaw"):
             rotation[("roll", "pitch", "yaw").index(axis)] -= value
         else:

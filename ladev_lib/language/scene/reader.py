@@ -108,6 +108,8 @@ class _Reader:
             )
             or hint == "objects"
         )
+        # "yaw: +4.5 degrees": an axis and its value stay together
+        sentence = re.sub(r"\b(yaw|pitch|roll|dx|dy|dz)\s*[:=]\s*(?=[-+]?\d)", r"\1 ", sentence)
         # "towel: back" / "towel = left": a position given as a value
         sentence = re.sub(
             r"\s*[:=]\s*(?=(?:left|right|front|back|center|centre|middle|rear|far side|near side)\b)", " at the ", sentence

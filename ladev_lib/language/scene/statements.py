@@ -250,6 +250,9 @@ def find_task(
     prompt's object list), so that the task's objects are the described ones.
     """
     read = reader or read_instruction
+    # "put the marble - not the die - on the box", "(not the carrot)": asides that name what is not meant
+    text = re.sub(r"\s[—–-]+\s*not\s+(?:the|a|an)\s+[^—–\n.-]+?\s*[—–-]+\s", " ", text, flags=re.IGNORECASE)
+    text = re.sub(r"\(\s*not\s+(?:the|a|an)\s+[^)]*\)", " ", text, flags=re.IGNORECASE)
     statements = _statements(text, read)
     strong = [s for s in statements if s.strength == 2]
     weak = [s for s in statements if s.strength == 1]
