@@ -43,6 +43,16 @@ from ladev_lib.language.scene.words import (
     split_sentences,
 )
 
+_RANDOM_GROUP = re.compile(
+    r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
+    r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
+)
+_MEMBER = re.compile(
+    r"\b(?:\d+|one|some)\s+of\s+(?:them|which|those|these|the \d+)\b|\bamong\s+(?:them|which|those)\b|"
+    r"\binclud(?:e|es|ing)\b|\bone being\b|\bof which\b"
+)
+
+
 # -- results ---------------------------------------------------------------------
 
 
@@ -76,6 +86,7 @@ class _Reader:
         self.out = _Reading()
         self._previous_domain: str | None = None
         self._listy = True
+        self._sentence_randoms = 0
 
     def read(self, text: str) -> _Reading:
         domain_hint: str | None = None
@@ -115,9 +126,12 @@ class _Reader:
             r"\s*[:=]\s*(?=(?:left|right|front|back|center|centre|middle|rear|far side|near side)\b)", " at the ", sentence
         )
         # "objects: 2" would be cut apart at the colon below: read it first.
+        self._sentence_randoms = 0
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
-            if self.out.total is None:
+            if re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()]):
+                self.out.randoms += int(keyed.group(1))  # "random objects: 2"
+            elif self.out.total is None:
                 self.out.total = int(keyed.group(1))
             self.out.recognised += 1
             sentence = sentence[: keyed.start()] + " " + sentence[keyed.end():]
@@ -190,8 +204,9 @@ class _Reader:
         for m in COUNT_TOTAL.finditer(text):
             n = int(next(g for g in m.groups() if g is not None))
             span = m.group(0)
-            if RANDOM_QUALIFIER.search(span):
+            if RANDOM_QUALIFIER.search(span) or re.search(r"\b(?:any|random)\s*$", text[: m.start()]):
                 self.out.randoms += n
+                self._sentence_randoms += n
                 self.out.random_positions.append(None)
             elif self.out.total is None:
                 self.out.total = n
@@ -200,6 +215,19 @@ class _Reader:
                 self.out.random_positions.append(None)
             consumed = True
             text = text.replace(span, " ", 1)
+        # "2 other balls", "3 fruits at random": free choices, whatever the noun
+        for m in list(_RANDOM_GROUP.finditer(text)):
+            noun_at = m.start("noun") if m.group("noun") else m.start("noun2")
+            if self.vocab.name_pattern.match(text, noun_at) or (m.group("noun") or "").split()[0:1] in (
+                ["objects"], ["object"], ["items"], ["item"], ["things"], ["thing"],
+            ):
+                continue
+            n = int(m.group("n") or m.group("n2"))
+            self.out.randoms += n
+            self._sentence_randoms += n
+            self.out.random_positions.append(None)
+            consumed = True
+            text = text.replace(m.group(0), " ", 1)
         if re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
             n_match = re.search(r"\d+", text)
             n = int(n_match.group(0)) if n_match else 1
@@ -277,6 +305,11 @@ class _Reader:
                 mention = singular(unknown) if qty > 1 else unknown
                 found.extend(_ObjectOp(mention, unknown=True) for _ in range(qty))
 
+        if found and self._sentence_randoms > 0 and _MEMBER.search(text):
+            # "four random objects, one of them a banana": the banana is one of the four
+            taken = min(len(found), self._sentence_randoms)
+            self._sentence_randoms -= taken
+            self.out.randoms -= taken
         if found:
             if position is not None:
                 found[-1].position = position
