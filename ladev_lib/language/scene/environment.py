@@ -62,6 +62,18 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
         value = float(factor.group(1) or factor.group(2))
         return {"op": "set_lighting", "intensity_delta": round(value - 1.0, 4)}
     text = re.sub(rf"({NUM})\s*(?:percent|per cent|pct)\b", r"\1%", text)
+    text = re.sub(r"\b(\d) quarters\b", lambda m: f" {int(m.group(1)) * 25}% ", text)
+    text = re.sub(r"\b(\d) tenths?\b", lambda m: f" {int(m.group(1)) * 10}% ", text)
+    text = re.sub(r"\b(?:a )?tenth\b", " 10% ", text)
+    # "at 60% of default", "dim to 40% of normal", "85% brightness": a level, not a change
+    level = re.search(
+        rf"({NUM})\s*%\s*(?:of\s+(?:the\s+)?(?:default|normal|usual|full|original|standard|regular)|brightness|intensity)"
+        rf"|\b(?:at|to)\s+(?:about\s+|around\s+)?({NUM})\s*%",
+        text,
+    )
+    if level is not None:
+        value = float(level.group(1) or level.group(2))
+        return {"op": "set_lighting", "intensity_delta": round(value / 100 - 1.0, 4)}
     text = re.sub(r"\b(?:a )?quarter\b", " 25% ", text)
     text = re.sub(r"\b(?:a )?fifth\b", " 20% ", text)
     text = re.sub(r"\b(?:a )?third\b", " 33% ", text)

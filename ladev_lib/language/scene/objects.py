@@ -80,6 +80,7 @@ def _reference(vocab: Vocabulary, rest: str, strict: bool) -> tuple[str, int] | 
     return phrase, start + rest[start:].index(phrase) + len(phrase)
 
 def find_region(text: str) -> tuple[str, str] | None:
+    text = re.sub(r"\bright(?=\s+(?:in|at|on|next|by|beside|near|there|here|now|behind|against)\b)", " ", text)
     horizontal = vertical = None
     spans: list[tuple[int, int]] = []
     for m in re.finditer(r"\b(left|right)(?:\s*(?:hand|-hand))?\b", text):

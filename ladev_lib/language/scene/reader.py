@@ -87,6 +87,7 @@ class _Reader:
         self._previous_domain: str | None = None
         self._listy = True
         self._sentence_randoms = 0
+        self._sentence_first = 0
 
     def read(self, text: str) -> _Reading:
         domain_hint: str | None = None
@@ -127,6 +128,7 @@ class _Reader:
         )
         # "objects: 2" would be cut apart at the colon below: read it first.
         self._sentence_randoms = 0
+        self._sentence_first = len(self.out.objects)
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
             if re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()]):
@@ -316,6 +318,13 @@ class _Reader:
             self.out.objects.extend(found)
             self.out.recognised += 1
             return found[-1]
+        if position is not None and re.search(r"\b(?:all|both|each|all of them|both of them)\b", text):
+            # "a pepsi can and a sprite can, all lined up at the front": every object of the sentence
+            for obj in self.out.objects[self._sentence_first:]:
+                if obj.position is None:
+                    obj.position = dict(position)
+            self.out.recognised += 1
+            return last
         if position is not None:
             if consumed and self.out.random_positions and self.out.random_positions[-1] is None and last is None:
                 self.out.random_positions[-1] = position
@@ -369,6 +378,9 @@ def read_description(
         out["task"] = parsed
     elif stated is not None:
         out["task"] = stated
+    elif found.statement and (retry := _task_in_scene(found.statement, reading, vocab)) is not None:
+        out["task"] = retry  # "pick up bottle" in a scene with one bottle
+        stated = retry
     elif found.statement or reading.task_line:
         what = found.statement or reading.task_line
         out["error"] = (
@@ -419,3 +431,28 @@ def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | N
             "target": frame.destination.text if frame.destination is not None and frame.task != "pick_up" else None,
         }
     return parse_instruction(instruction)
+
+
+def _task_in_scene(statement: str, reading: _Reading, vocab: Vocabulary) -> dict[str, Any] | None:
+    """A task statement read again with the described objects as its scene ("the bottle" = the one there)."""
+    by_name = {name: cid for cid, name in vocab.ids.items()}
+    ids = [by_name[o.mention] for o in reading.objects if o.mention in by_name]
+    if not ids:
+        return None
+    frame = read_instruction(statement, scene_objects=ids)
+    if frame.task is None or frame.task == "other" or frame.object is None or not frame.ok:
+        return None
+    if frame.task != "pick_up" and frame.destination is None:
+        return None
+
+    def name(phrase: Any) -> str | None:
+        if phrase is None:
+            return None
+        oid = getattr(phrase, "object_id", None)
+        return vocab.ids.get(oid, phrase.text) if oid is not None else phrase.text
+
+    return {
+        "type": frame.task,
+        "source": name(frame.object),
+        "target": name(frame.destination) if frame.task != "pick_up" else None,
+    }
