@@ -76,12 +76,20 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
     # 2. "not a bowl, a mug" / "no bowl" / "without a sponge": the negated object is not there.
     names = vocab.name_pattern.pattern
     negation = r"\b(?:not|no|without|never|dont (?:add|include|put|want|need)|do not (?:add|include|put))\s+"
-    # "not a bowl, a mug": the mug is said again, not added again
-    out = re.sub(rf"{negation}(?:a|an|the|any)?\s*{names}\s*,\s*(?:but\s+)?(?:a|an)\s+", " the ", out)
+    dropped: list[str] = []
+
+    def instead(m: re.Match[str]) -> str:
+        # "not a bowl, a mug": a bowl said before is replaced; else the mug is said again, not added again
+        said = re.search(rf"(?<![a-z]){re.escape(m.group(1))}(?![a-z])", out[: m.start()])
+        if said is not None:
+            dropped.append(m.group(1))
+            return " a "
+        return " the "
+
+    out = re.sub(rf"{negation}(?:a|an|the|any)?\s*({names})\s*,\s*(?:but\s+)?(?:a|an)\s+", instead, out)
     out = re.sub(rf"{negation}(?:a|an|the|any)?\s*{names}\s*,?", " ", out)
     out = re.sub(rf"\bnot\s+(?:near|next to|beside|by|on|in|behind|left of|right of)\s+(?:the|a|an)\s+{names}", " ", out)
     # 3. "drop the pepsi can": an object described before is taken out.
-    dropped: list[str] = []
 
     def take_out(m: re.Match[str]) -> str:
         dropped.append(m.group("name"))

@@ -18,7 +18,7 @@ from ladev_lib.language.scene.words import NUM, length_scale
 
 LIGHT_WORDS = re.compile(
     r"\b(?:light|lights|lighting|lit|illumination|illuminated|brightness|lamp|lamps|exposure|"
-    r"brighter|darker|dimmer|dimmed|dim|dimly|darken|darkened|brighten|brightened|luminosity|"
+    r"brighter|darker|dimmer|dimmed|dim|dimly|darken|darkened|brighten|brightened|luminosity|as bright|"
     r"set lighting|set_lighting)\b"
 )
 CAMERA_WORDS = re.compile(

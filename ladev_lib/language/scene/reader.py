@@ -131,8 +131,12 @@ class _Reader:
         self._sentence_first = len(self.out.objects)
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
-            if re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()]):
+            qualifier = re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()])
+            if qualifier is not None:
                 self.out.randoms += int(keyed.group(1))  # "random objects: 2"
+                sentence = sentence[: qualifier.start()] + " " + sentence[keyed.start():]
+                keyed = KEYED_COUNT.search(sentence)
+                assert keyed is not None
             elif self.out.total is None:
                 self.out.total = int(keyed.group(1))
             self.out.recognised += 1
@@ -230,7 +234,7 @@ class _Reader:
             self.out.random_positions.append(None)
             consumed = True
             text = text.replace(m.group(0), " ", 1)
-        if re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
+        if not consumed and re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
             n_match = re.search(r"\d+", text)
             n = int(n_match.group(0)) if n_match else 1
             self.out.randoms += n

@@ -86,6 +86,7 @@ _SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\
 
 
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
+_NEW_CLAUSE = re.compile(r",?\s*(?:and\s+|but\s+|while\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE)
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
 
 
@@ -130,13 +131,13 @@ def _is_place(phrase: NounPhrase | None) -> bool:
     return phrase.head.lower() in _PLACE_WORDS or (bool(words) and words[-1] in _PLACE_WORDS)
 
 
-def _cuts(candidate: str) -> list[str]:
-    """The candidate, then shorter versions cut at clause boundaries (first boundary last)."""
-    out = [candidate]
+def _cuts(candidate: str) -> list[tuple[str, int]]:
+    """The candidate, then shorter versions cut at clause boundaries (first boundary last), with their lengths."""
+    out = [(candidate, len(candidate))]
     for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|so that|so|then|with|because)\s+|\(|\)", candidate))):
-        head = candidate[: m.start()].strip()
-        if head and head not in out:
-            out.append(head)
+        head = candidate[: m.start()]
+        if head.strip() and head.strip() not in [c.strip() for c, _ in out]:
+            out.append((head, m.start()))
     return out
 
 
@@ -157,26 +158,64 @@ def _arrow(text: str) -> str:
     return f"{verb} {m.group('src')} {rel} {m.group('tgt')}"
 
 
-def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+_ING = {"grabb": "grab", "putt": "put", "sett": "set", "dropp": "drop", "gett": "get", "tak": "take",
+        "plac": "place", "mov": "move", "slid": "slide"}
+
+
+def _normalise(candidate: str) -> str:
+    """A statement as an instruction: 'one of the carrots', arrows, '-ing' and third-person verbs undone."""
     candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
     candidate = _arrow(candidate)
     candidate = re.sub(
         r"^\s*(pick|grabb|grasp|lift|tak|putt|plac|sett|mov|bring|stack|dropp|insert|push|slid|carry|lay|rest|gett)ing\b",
-        lambda m: {"grabb": "grab", "putt": "put", "sett": "set", "dropp": "drop", "gett": "get", "tak": "take",
-                   "plac": "place", "mov": "move", "slid": "slide"}.get(m.group(1).lower(), m.group(1)),
-        candidate, flags=re.IGNORECASE,
+        lambda m: _ING.get(m.group(1).lower(), m.group(1)), candidate, flags=re.IGNORECASE,
     )
-    candidate = re.sub(r"^\s*(\w+?)(?<!s)s\b", lambda m: m.group(1) if re.fullmatch(_VERB, m.group(1), re.IGNORECASE) else m.group(0), candidate)
+    candidate = re.sub(
+        r"^\s*(\w+?)(?<!s)s\b",
+        lambda m: m.group(1) if re.fullmatch(_VERB, m.group(1), re.IGNORECASE) else m.group(0), candidate,
+    )
     candidate = re.sub(r"^\s*picks\s+up\b", "pick up", candidate, flags=re.IGNORECASE)
-    for text in _cuts(candidate.strip().strip(")(\"'`*").strip()):
-        if not text:
-            continue
-        frame = reader(text)
-        if frame.task in TASKS and frame.object is not None and frame.ok:
-            if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
-                continue
-            return frame
+    return candidate.strip().strip(")(\"'`*").strip()
+
+
+def _read_one(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+    text = _normalise(candidate)
+    if not text:
+        return None
+    frame = reader(text)
+    if frame.task in TASKS and frame.object is not None and frame.ok:
+        if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
+            return None
+        return frame
     return None
+
+
+def _read_span(candidate: str, reader: Callable[[str], Frame]) -> tuple[Frame, int] | None:
+    """The frame a statement gives, and how much of the candidate it used (None: no task in it)."""
+    cuts = _cuts(candidate)
+    for k, (raw, used) in enumerate(cuts):
+        frame = _read_one(raw, reader)
+        if frame is None:
+            continue
+        # the shortest cut that reads the same: what follows it is another clause about the scene
+        for shorter, length in cuts[k + 1:]:
+            again = _read_one(shorter, reader)
+            if again is not None and _same_frame(again, frame):
+                used = length
+        return frame, used
+    return None
+
+
+def _same_frame(a: Frame, b: Frame) -> bool:
+    def key(f: Frame) -> tuple[str | None, str | None, str | None]:
+        return (f.task, f.object.text if f.object else None, f.destination.text if f.destination else None)
+
+    return key(a) == key(b)
+
+
+def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+    found = _read_span(candidate, reader)
+    return found[0] if found is not None else None
 
 
 def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement]:
@@ -190,8 +229,9 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
             if m is not None and (marked is None or m.end() < marked):
                 marked = m.end()
         if marked is not None:
-            frame = _read(seg[marked:], reader)
-            if frame is not None:
+            span = _read_span(seg[marked:], reader)
+            frame = span[0] if span is not None else None
+            if frame is not None and span is not None:
                 label = LABEL.search(seg)
                 if label is not None:
                     start = s + label.start()
@@ -202,6 +242,8 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
                     before = [b for b in bounds if b <= first]
                     start = s + (before[-1] if before else 0)
                 end, keep = e, " . "
+                if span[1] < len(seg) - marked and _NEW_CLAUSE.match(seg, marked + span[1]):
+                    end = s + marked + span[1]  # "..., and there is a green cube at the front" stays
                 rel = _RELATIVE.search(seg, marked)
                 if rel is not None and frame.object is not None:
                     end, keep = s + rel.start(), f" . the {frame.object.text} "
@@ -215,11 +257,13 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
         if m is None:
             continue
         after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
-        if _INDEFINITE.match(after_verb):
-            continue
         frame = _read(seg[m.end():], reader)
         if frame is None:
             continue
+        if _INDEFINITE.match(after_verb) and (
+            frame.object is None or re.search(rf"\b{re.escape(frame.object.head)}", text[:s], re.IGNORECASE) is None
+        ):
+            continue  # "put a carrot near the plate" sets the scene; "two apples ... put an apple in" is the task
         back = i + 1 < len(spans) and BACK_LABEL.match(text[spans[i + 1][0]:spans[i + 1][1]]) is not None
         found.append(TaskStatement(s, e, seg[m.end():].strip(), frame, 2 if back else 1))
         if back:
