@@ -276,9 +276,9 @@ def score_row(row: dict[str, Any], view: CompileView, names: _Names) -> RowScore
     want_task = exp["task"]
     if spec is not None:
         got_task = (spec.task.type, spec.source.id, spec.target.id if spec.target is not None else None)
-        want = (want_task["type"], names.id_of(want_task["object"]), names.id_of(want_task.get("target")))
-        if got_task != want:
-            errors["task"] = f"expected {want}, got {got_task}"
+        want_ids = (want_task["type"], names.id_of(want_task["object"]), names.id_of(want_task.get("target")))
+        if got_task != want_ids:
+            errors["task"] = f"expected {want_ids}, got {got_task}"
     else:
         ops_task = view.operations.task if view.operations is not None else None
         if feasible or ops_task is None:

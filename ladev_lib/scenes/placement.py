@@ -112,14 +112,17 @@ def place_objects(
 
     fixed = [i for i, r in enumerate(requests) if r.x is not None and r.y is not None]
     free = [i for i, r in enumerate(requests) if i not in fixed]
-    yaws = {i: requests[i].yaw_deg if requests[i].yaw_deg is not None else float(rng.uniform(-180, 180)) for i in fixed}
+    yaws: dict[int, float] = {}
+    for i in fixed:
+        given = requests[i].yaw_deg
+        yaws[i] = given if given is not None else float(rng.uniform(-180, 180))
     clash = _place_fixed(requests, fixed, yaws, grow, placed, prints)
     if clash is not None:
         # Objects at given coordinates with no given yaw may turn square to the table to clear
         # each other (only tried when the drawn yaws collide: scenes that placed, place the same).
         placed.clear()
         prints.clear()
-        square = {i: (requests[i].yaw_deg if requests[i].yaw_deg is not None else 0.0) for i in fixed}
+        square: dict[int, float] = {i: requests[i].yaw_deg or 0.0 for i in fixed}
         if _place_fixed(requests, fixed, square, grow, placed, prints) is not None:
             raise PlacementError(clash)
 

@@ -453,7 +453,8 @@ def _task_in_scene(statement: str, reading: _Reading, vocab: Vocabulary) -> dict
         if phrase is None:
             return None
         oid = getattr(phrase, "object_id", None)
-        return vocab.ids.get(oid, phrase.text) if oid is not None else phrase.text
+        text = str(phrase.text)
+        return vocab.ids.get(oid, text) if oid is not None else text
 
     return {
         "type": frame.task,
