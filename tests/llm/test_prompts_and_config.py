@@ -36,7 +36,8 @@ def test_compile_examples_are_valid_and_agree_with_the_offline_rules(params, cat
         expected = SceneOperations.model_validate_json(example.assistant)
         lines = example.user.strip().splitlines()
         description = "\n".join(lines[:-1]).removeprefix("Description: ")
-        instruction = lines[-1].removeprefix("Basic instruction: ")
+        last = lines[-1]
+        instruction = last.removeprefix("Basic instruction: ") if last.startswith("Basic instruction: ") else None
         ours = SceneOperations.model_validate(read_description(description, vocab, instruction))
         assert len(ours.objects) == len(expected.objects), description
         assert ours.task == expected.task and bool(ours.error) == bool(expected.error)
