@@ -118,13 +118,23 @@ def place_objects(
         yaws[i] = given if given is not None else float(rng.uniform(-180, 180))
     clash = _place_fixed(requests, fixed, yaws, grow, placed, prints)
     if clash is not None:
-        # Objects at given coordinates with no given yaw may turn square to the table to clear
-        # each other (only tried when the drawn yaws collide: scenes that placed, place the same).
+        # Objects at given coordinates with no given yaw may turn (square to the table, across it,
+        # diagonally) to clear each other; only tried when the drawn yaws collide, so scenes that
+        # placed before place the same.
         placed.clear()
         prints.clear()
-        square: dict[int, float] = {i: requests[i].yaw_deg or 0.0 for i in fixed}
-        if _place_fixed(requests, fixed, square, grow, placed, prints) is not None:
-            raise PlacementError(clash)
+        for i in fixed:
+            r = requests[i]
+            assert r.x is not None and r.y is not None
+            turns = [yaws[i]] if r.yaw_deg is not None else [0.0, 90.0, 45.0, 135.0, yaws[i]]
+            for yaw in turns:
+                fp = footprint(r.obj, r.x, r.y, yaw, grow)
+                if not any(overlaps(fp, other) for other in prints):
+                    break
+            else:
+                raise PlacementError(clash)
+            placed[i] = Placed(r.obj, r.x, r.y, yaw)
+            prints.append(fp)
 
     # Largest footprints first: they are the hardest to fit.
     # Objects confined to a region go before the others of the same size class.

@@ -164,6 +164,12 @@ _ING = {"grabb": "grab", "putt": "put", "sett": "set", "dropp": "drop", "gett": 
 
 def _normalise(candidate: str) -> str:
     """A statement as an instruction: 'one of the carrots', arrows, '-ing' and third-person verbs undone."""
+    # "one of the carrots" -> "the carrot"
+    candidate = re.sub(
+        r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+((?:\w+\s+){0,2}?\w+?)(?:e?s)\b"
+        r"(?=\s+(?:near|on|onto|in|into|inside|next|to|by|beside|close|up)\b|\s*$)",
+        r"the \1", candidate, flags=re.IGNORECASE,
+    )
     candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
     candidate = _arrow(candidate)
     candidate = re.sub(
