@@ -53,9 +53,10 @@ SETS: dict[str, tuple[Path, str]] = {
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 LIBERO_PRO_CITATION = (
-    "LIBERO-PRO pairs: paraphrases and task changes of LIBERO instructions from LIBERO-PRO "
-    "(Zhou et al., 2025, \"LIBERO-PRO: Towards Robust and Fair Evaluation of Vision-Language-Action "
-    "Models Beyond Memorization\"), CC BY 4.0; the subset in `../shared/dev/libero_pro_pairs.csv`."
+    "LIBERO-PRO pairs: the language perturbations (labelled same) and task perturbations (labelled "
+    "different) of LIBERO instructions from LIBERO-PRO (github.com/Zxy-MLlab/LIBERO-PRO, "
+    "`libero_ood/ood_language.yaml`, `libero_ood/ood_task.yaml`), data under CC BY 4.0; the 111-pair "
+    "subset in `../shared/dev/libero_pro_pairs.csv`. Cite LIBERO-PRO when reporting on it."
 )
 
 
