@@ -22,9 +22,9 @@ from ladev_lib.catalog import load_catalog  # noqa: E402
 from ladev_lib.config import compose_config, section  # noqa: E402
 from ladev_lib.llm.config import LLMConfig, make_client  # noqa: E402
 from ladev_lib.llm.prompts import load_prompts  # noqa: E402
-from ladev_lib.llm.scene_writer import write_scene  # noqa: E402
 from ladev_lib.scenes.compiler import CompileConfig, DesignExpectation  # noqa: E402
 from ladev_lib.scenes.text_to_scene import SceneCompiler, SceneText  # noqa: E402
+from ladev_lib.scenes.writer import write_scene  # noqa: E402
 from ladev_lib.study.design import StudyConfig, design_scenes  # noqa: E402
 
 

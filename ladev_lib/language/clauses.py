@@ -17,10 +17,15 @@ from dataclasses import dataclass, field
 
 from ladev_lib.language import lexicon as lx
 from ladev_lib.language.mentions import NameIndex
+from ladev_lib.language.tasks import PLACEMENT_RELATIONS, RELATION_TASKS
 from ladev_lib.language.tokens import Token, is_sentence_end
 
-TASK_OF_RELATION = {"near": "move_near", "on": "put_on", "in": "put_in"}
-PLACEMENT = frozenset(TASK_OF_RELATION)
+TASK_OF_RELATION: dict[str, str] = dict(RELATION_TASKS)
+PLACEMENT = PLACEMENT_RELATIONS
+FREE = "~"
+"""Prefix of the key of a free noun phrase (one the catalog does not name): "~wine bottle"."""
+GRIPPER_WORDS = frozenset({"gripper", "grippers", "hand", "fingers", "claw", "claws", "jaws", "jaw", "grip", "pincers"})
+GRIP_VERBS = frozenset({"close", "open", "shut", "squeeze", "tighten", "clamp", "wrap", "loosen", "relax"})
 
 
 # -- clause structure -------------------------------------------------------------
@@ -36,6 +41,14 @@ class Ref:
     pronoun: bool = False
     quantity: str | None = None
     note: str | None = None
+    words: tuple[str, ...] = ()
+    """The phrase's content words (no determiner), for its noun phrase."""
+    free_problem: str | None = None
+    """Why a free phrase (key ``~...``) names no one catalog object, for the catalog-only view."""
+
+    @property
+    def free(self) -> bool:
+        return self.object_id is not None and self.object_id.startswith(FREE)
 
 
 @dataclass
@@ -48,6 +61,11 @@ class Governed:
     refs: list[Ref] = field(default_factory=list)
     places: list[str] = field(default_factory=list)
     """Completing phrases that are not objects ("the table", "your left")."""
+    follows: str | None = None
+    """What the relation word comes right after: "bare" (the acted-on phrase) or "governed"."""
+    qualifier: str | None = None
+    """Set by the parser when the relation describes a phrase instead of stating the task:
+    "object" ("the bowl *next to the plate*") or "destination" ("the compartment *of the caddy*")."""
 
     @property
     def dangling(self) -> bool:
@@ -66,9 +84,13 @@ class Clause:
     recipient: bool = False
     alternatives: bool = False
     repeat: str | None = None
+    reverse_pick: bool = False
+    """A pick verb with a "from"/"off" phrase ("lift the bowl from the stove")."""
     unknown_verb: str | None = None
     """An unlisted word in verb position after "and" / "then" (read as an action outside the tasks)."""
     particles: list[str] = field(default_factory=list)
+    bare_places: list[str] = field(default_factory=list)
+    """Phrases outside any relation that name a place or the robot ("the gripper")."""
     bare: list[Ref] = field(default_factory=list)
     governed: list[Governed] = field(default_factory=list)
     kind: str = "empty"
@@ -156,16 +178,24 @@ class ClauseReader:
         gov: Governed | None = None
         saw_or = False
         verbs: list[Token] = []
+        before: Token | None = None
+        last: str | None = None  # what the previous element was: "bare" | "governed" | None
 
         def close() -> None:
-            nonlocal phrase
+            nonlocal phrase, last
             if phrase:
-                refs, places = self._refs_of(phrase)
+                # a free noun phrase needs a noun-phrase position: a determiner, or right after
+                # a verb, a particle or a relation word ("put wine bottle on rack")
+                slot = before is not None and (before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ",")
+                refs, places = self._refs_of(phrase, free_ok=slot or any(t.kind in ("DET", "QUANT") for t in phrase))
                 if gov is not None:
                     gov.refs.extend(refs)
                     gov.places.extend(places)
+                    last = "governed"
                 else:
                     c.bare.extend(refs)
+                    c.bare_places.extend(places)
+                    last = "bare" if refs else last
             phrase = []
 
         first = 1 if c.unknown_verb is not None else 0
@@ -174,15 +204,31 @@ class ClauseReader:
                 continue
             if tok.text in lx.DESIRE:
                 c.desire = True
+            if tok.kind == "WORD" and (tok.text in lx.DESIRE or tok.text == "to") and any(
+                t.kind in ("OBJ", "WORD") and t.text not in lx.DESIRE for t in phrase
+            ):
+                close()  # "the pen needs to be ...": the phrase ends before the desire word
+                continue
             if tok.kind in ("OBJ", "PRON", "DET", "QUANT", "WORD"):
                 phrase.append(tok)
                 continue
             close()
+            if tok.kind not in ("ADV",):
+                before = tok
             if tok.kind == "REL":
-                gov = Governed(tok.relation or "other", tok.text, tok.directional)
+                back = j - 1
+                while back > 0 and c.tokens[back].kind == "ADV":
+                    back -= 1
+                prev_kind = c.tokens[back].kind if back >= 0 and j > 0 else None
+                follows = last if prev_kind in ("OBJ", "WORD", "PRON") else None
+                if prev_kind == "REL":
+                    follows = "governed"  # "from between the plate and ..."
+                gov = Governed(tok.relation or "other", tok.text, tok.directional, follows=follows)
                 c.governed.append(gov)
+                last = "governed"
             elif tok.kind in ("VERB", "BE", "MODAL", "NEG"):
                 gov = None
+                last = None
                 if tok.kind == "VERB":
                     verbs.append(tok)
                     nxt = c.tokens[j + 1] if j + 1 < len(c.tokens) else None
@@ -203,7 +249,7 @@ class ClauseReader:
         c.alternatives = saw_or and len({r.object_id or r.text for r in c.refs()}) > 1
         _with_as_source(c)
 
-    def _refs_of(self, phrase: list[Token]) -> tuple[list[Ref], list[str]]:
+    def _refs_of(self, phrase: list[Token], free_ok: bool = True) -> tuple[list[Ref], list[str]]:
         """The object references in one noun phrase, and its text if it names a place instead."""
         text = " ".join(t.text for t in phrase if t.kind != "DET")
         quantity = next((t.text for t in phrase if t.kind == "QUANT"), None)
@@ -212,6 +258,8 @@ class ClauseReader:
             problem = f"'{pron.text}' means more than one object" if pron.text in lx.PLURAL_PRONOUNS else None
             return [Ref(pron.text, pronoun=problem is None, problem=problem)], []
         content = [t for t in phrase if t.kind in ("OBJ", "WORD")]
+        while content and content[0].kind == "WORD" and (content[0].text in lx.DESIRE or content[0].text in lx.SKIPPABLE):
+            content = content[1:]  # "like the carrot": the desire word is no part of the phrase
         heads = [
             k for k, t in enumerate(content)
             if t.kind == "OBJ" and not self._is_modifier(content, k)
@@ -224,18 +272,45 @@ class ClauseReader:
                 obj = content[k]
                 assert obj.object_id is not None
                 resolved = self.index.prefer_scene(obj.object_id, words, self.scene, obj.text)
-                refs.append(Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note))
+                refs.append(
+                    Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note, words=tuple(words))
+                )
                 start = k + 1
             return refs, []
         words = [w for t in content for w in t.text.split()]
+        full = tuple(words)
         if "of" in words[:-1]:
             words = words[len(words) - words[::-1].index("of") :]  # "can of coca cola" -> "coca cola"
         if not words:
             return [], [text] if text else []
+        if len(words) > 1 and words[-1] in _SURFACE_PARTS:
+            words = words[:-1]  # "the cabinet top": the cabinet
+            full = tuple(w for w in full if w not in _SURFACE_PARTS)
+        head = words[-1]
         found = self.index.resolve_head(words, self.scene, text)
-        if found is None:
+        if found is not None and head not in self.index.name_words and not self.index.is_object_noun(head):
+            found = None  # "the wooden cabinet": a modifier that names catalog objects does not make it one
+        if found is None and (
+            not free_ok
+            or any(w in _NOT_NOUNS for w in full)
+            or (head in lx.LOCATION_NOUNS and head not in _FURNITURE)
+            or head in GRIPPER_WORDS
+            or not head.isalpha()
+        ):
             return [], [text]
-        return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note)], []
+        unknown_modifier = any(
+            w not in self.index.name_words and w not in lx.COLOR_WORDS and w not in lx.SIZE_WORDS for w in words[:-1]
+        )
+        if found is None or (
+            found.object_id is None
+            and found.problem
+            and ("no known" in found.problem or unknown_modifier or (self.scene is not None and "plural" not in found.problem))
+        ):
+            # a noun phrase the catalog does not name (or names ambiguously): free text, grounded later
+            free = _free_words(full)
+            problem = found.problem if found is not None else f"'{text}' names no known object"
+            return [Ref(text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem)], []
+        return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note, words=full)], []
 
     def _is_modifier(self, content: list[Token], k: int) -> bool:
         """A name used as a modifier: "the coke label", "orange soda"."""
@@ -258,6 +333,10 @@ class ClauseReader:
         return kind
 
     def _action_kind(self, c: Clause) -> str:
+        if c.verb is not None and c.verb.lemma in GRIP_VERBS and any(
+            p.split()[-1] in GRIPPER_WORDS for p in c.bare_places
+        ):
+            return "preamble"  # "close the gripper around it": a step of grasping, not another task
         has_ref = bool(c.bare)
         object_places = [g for g in c.placements() if g.refs]
         reverse = [g for g in c.governed if g.relation == "reverse" and g.refs]
@@ -276,6 +355,7 @@ class ClauseReader:
             return "other"
         if cls == "pick":
             if reverse or (reverse_particle and not object_places):
+                c.reverse_pick = bool(reverse) and not c.recipient
                 return "other"
             if any(g.directional or verb.lemma in lx.PICK_PLACES_WITH_STATIVE for g in object_places):
                 return "place"
@@ -292,6 +372,26 @@ class ClauseReader:
                 return "other"
             return "place_nodest"
         return cls or "other"
+
+
+_FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
+"""Place nouns that are objects of their own in open-vocabulary scenes ("put the mug on the shelf")."""
+_SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
+"""Head nouns that name a part of the object before them ("the cabinet top")."""
+_NOT_NOUNS = frozenset(
+    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing"]
+)
+"""Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
+
+
+def _free_words(words: tuple[str, ...]) -> tuple[str, ...]:
+    """A free phrase in head-final order: "bottle of wine" -> "wine bottle"; quantifiers dropped."""
+    words = tuple(w for w in words if w not in lx.QUANTIFIERS)
+    if "of" in words[1:-1]:
+        k = words.index("of")
+        if words[k - 1] in lx.CONTAINER_NOUNS:
+            return (*words[k + 1 :], *words[:k])
+    return words
 
 
 def _main_verb(verbs: list[Token]) -> Token | None:

@@ -27,6 +27,9 @@ class LabelledPair:
     candidate: str
     same: bool
     category: str
+    scene_objects: frozenset[str] | None = None
+    """The scene's objects (catalog ids or plain names) when the set gives them."""
+    suite: str = ""
 
 
 def load_labelled_pairs(path: str | Path) -> list[LabelledPair]:
@@ -38,7 +41,14 @@ def load_labelled_pairs(path: str | Path) -> list[LabelledPair]:
         label = (row.get("label") or "").strip().lower()
         if label not in ("same", "different"):
             raise ValueError(f"{path}:{n}: label must be 'same' or 'different', got {label!r}")
-        pairs.append(LabelledPair(row["original"], row["candidate"], label == "same", row.get("category") or ""))
+        cell = (row.get("scene_objects") or "").strip()
+        scene = frozenset(p.strip() for p in cell.replace(",", ";").split(";") if p.strip()) or None
+        pairs.append(
+            LabelledPair(
+                row["original"], row["candidate"], label == "same", row.get("category") or "",
+                scene, row.get("suite") or "",
+            )
+        )
     return pairs
 
 
@@ -108,7 +118,9 @@ class ValidatorEvaluation:
 def evaluate_validator(
     pairs: Sequence[LabelledPair], validator: ParaphraseValidator, min_recall: float = 0.90
 ) -> ValidatorEvaluation:
-    verdicts = validator.validate_pairs([(p.original, p.candidate) for p in pairs])
+    verdicts = validator.validate_pairs(
+        [(p.original, p.candidate) for p in pairs], [p.scene_objects for p in pairs]
+    )
     actual = [p.same for p in pairs]
     raw = [v.similarity for v in verdicts]
     sweep = threshold_sweep(raw, actual)

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 from collections.abc import Sequence
-from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -22,6 +21,7 @@ from ladev_lib.language.lexicon import DETERMINERS
 from ladev_lib.language.mentions import ObjectRef, name_index
 from ladev_lib.language.paraphrase import offline_paraphrases
 from ladev_lib.language.parser import InstructionParse, parse_instruction
+from ladev_lib.language.tasks import TaskType
 from ladev_lib.llm.base import LLMRequest
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig
@@ -41,7 +41,7 @@ RULE_MODULES: tuple[str, ...] = (
 )
 """Modules the offline answers depend on (fingerprinted by the offline backend)."""
 
-TaskName = Literal["pick_up", "move_near", "put_on", "put_in"]
+TaskName = TaskType
 
 
 class ParaphraseAnswer(BaseModel):

@@ -30,6 +30,7 @@ from typing import Any
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.catalog.catalog import normalize_name
 from ladev_lib.language.clauses import (
+    FREE,
     PLACEMENT,
     TASK_OF_RELATION,
     Clause,
@@ -38,7 +39,9 @@ from ladev_lib.language.clauses import (
     Ref,
     split_clauses,
 )
+from ladev_lib.language.frames import Frame, NounPhrase, Qualifier
 from ladev_lib.language.mentions import name_index
+from ladev_lib.language.tasks import TASKS
 from ladev_lib.language.tokens import tag_tokens
 
 _ACTIONS = frozenset({"pick", "place", "place_nodest", "other", "release"})
@@ -93,7 +96,52 @@ class _Action:
         return [r for c in self.clauses for r in c.bare]
 
     def governed(self) -> list[Governed]:
-        return [g for c in self.clauses for g in c.governed]
+        """The relations that state the task (not those that describe a phrase)."""
+        return [g for c in self.clauses for g in c.governed if g.qualifier is None]
+
+    def qualifiers(self, role: str) -> list[Governed]:
+        return [g for c in self.clauses for g in c.governed if g.qualifier == role]
+
+
+def _mark_qualifiers(act: _Action) -> None:
+    """Relations that describe a phrase rather than state the task.
+
+    "pick up the bowl *next to the plate* and put it on the tray": the first
+    relation locates the object; "put it in the compartment *of the caddy*":
+    the "of" phrase belongs to the destination. A stative relation right
+    after the acted-on phrase (or chained after such a one) is the object's
+    only when another relation is left to be the destination; a relation in
+    a pick clause that was merged into a placement always is.
+    """
+    if act.kind not in ("place", "pick"):
+        return
+    potential: list[Governed] = []
+    for c in act.clauses:
+        merged_pick = act.kind == "place" and (c.kind == "pick" or c.reverse_pick)
+        prev: Governed | None = None
+        for g in c.governed:
+            if merged_pick and (g.refs or g.places) and _locates(g):
+                g.qualifier = "object"
+            elif not g.directional and _locates(g) and (
+                g.follows == "bare" or (g.follows == "governed" and prev is not None and prev in potential)
+            ):
+                potential.append(g)
+            prev = g
+    if act.kind == "pick":
+        for g in potential:
+            g.qualifier = "object"
+        return
+    rest = [g for c in act.clauses for g in c.governed if g.qualifier is None and g not in potential]
+    if any(g.relation in PLACEMENT and g.refs for g in rest):
+        for g in potential:
+            g.qualifier = "object"
+    # "of" right after the destination phrase: part of it ("the back compartment of the caddy")
+    for c in act.clauses:
+        for prev, g in zip(c.governed, c.governed[1:], strict=False):
+            if g.phrase == "of" and g.follows == "governed" and prev.qualifier is None and prev.relation in PLACEMENT:
+                g.qualifier = "destination"
+            elif g.phrase == "of" and g.follows == "governed" and prev.qualifier == "object":
+                g.qualifier = "object"
 
 
 def _resolve_pronouns(clauses: list[Clause]) -> None:
@@ -114,6 +162,8 @@ def _resolve_pronouns(clauses: list[Clause]) -> None:
                     ref.object_id = focus
                     if focus is None:
                         pending.append(ref)
+                elif c.kind == "preamble" and not c.bare and ref.object_id is not None:
+                    focus = ref.object_id  # "move to the ladle, grasp it"
     later = next((r.object_id for c in clauses for r in c.bare if not r.pronoun and r.object_id), None)
     for ref in pending:
         ref.object_id = later
@@ -159,7 +209,8 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)
     if not _same_object(a, b):
         return None
-    if a.kind == "pick" and b.kind in ("place", "pick"):
+    picked_from = a.kind == "other" and all(c.reverse_pick for c in a.clauses)
+    if (a.kind == "pick" or picked_from) and b.kind in ("place", "pick"):
         return _Action(b.kind, both)
     reordered = any((c.intro or "") in ("after", "before", "once") for c in both)
     if reordered and {a.kind, b.kind} == {"pick", "place"}:
@@ -180,7 +231,7 @@ class _Composer:
         self.clauses = clauses
         self.reasons: list[str] = []
 
-    def compose(self) -> InstructionParse:
+    def compose(self) -> Frame:
         _mark_topics(self.clauses)
         _resolve_pronouns(self.clauses)
         negated = [c for c in self.clauses if c.negation and c.kind != "manner"]
@@ -190,8 +241,14 @@ class _Composer:
             if not c.negation and (c.kind in _ACTIONS or (c.kind == "place" and c.verb is None))
         ]
         actions = _merge(positive)
-        task, source, target = None, None, None
+        for act in actions:
+            _mark_qualifiers(act)
+        task: str | None = None
+        source: Ref | None = None
+        target: Ref | None = None
         main: _Action | None = None
+        extra: list[str] = []
+        dropped: list[str] = []
         if not actions:
             if negated:
                 self.reasons.append(f"negated: '{negated[0].negation} {negated[0].verb_text()}'")
@@ -199,23 +256,69 @@ class _Composer:
                 self.reasons.append("no task verb found")
         else:
             if len(actions) > 1:
-                extra = ", ".join(f"'{a.verb}'" for a in actions[1:])
+                extra = [a.verb for a in actions[1:]]
                 word = "alternative action" if any(c.intro == "or" for a in actions for c in a.clauses) else "extra step"
-                self.reasons.append(f"{word}: {extra} after '{actions[0].verb}'")
+                self.reasons.append(f"{word}: {', '.join(repr(e) for e in extra)} after '{actions[0].verb}'")
             main = actions[0]
             task, source, target = self._roles(main)
-        if source is not None and source == target:
-            self.reasons.append(f"the same object is source and destination: {source}")
+            if main.kind == "place_nodest":
+                dropped.append("destination")
+        src_id = source.object_id if source else None
+        tgt_id = target.object_id if target else None
+        if src_id is not None and src_id == tgt_id:
+            self.reasons.append(f"the same object is source and destination: {_shown(src_id)}")
         repeat = next((c.repeat for c in self.clauses if c.repeat), None)
         if repeat:
             self.reasons.append(f"'{repeat}' asks for the task more than once")
-        self._check_negations(negated, source)
-        self._check_mentions(main, negated, source, target)
+        negated_task = self._check_negations(negated, src_id)
+        self._check_mentions(main, negated, src_id, tgt_id)
         notes = tuple(r.note for c in self.clauses for r in c.refs() if r.note)
+        conditions = tuple(
+            " ".join(t.text for t in c.tokens) for c in self.clauses if c.kind == "manner" or c.intro == "result"
+        )
         reason = "; ".join(dict.fromkeys(self.reasons)) or None
-        return InstructionParse(self.text, task, source, target, reason, notes)
+        return Frame(
+            text=self.text,
+            task=task,
+            object=self._phrase(source, main.qualifiers("object") if main else []),
+            destination=self._phrase(target, main.qualifiers("destination") if main else []),
+            negated=negated_task or (not actions and bool(negated)),
+            extra_steps=tuple(extra),
+            dropped_roles=tuple(dropped),
+            conditions=conditions,
+            reason=reason,
+            notes=notes,
+        )
 
-    def _roles(self, act: _Action) -> tuple[str | None, str | None, str | None]:
+    def _phrase(self, ref: Ref | None, qualifiers: list[Governed] | None = None) -> NounPhrase | None:
+        """The noun phrase of a role: the antecedent's words for a pronoun; its qualifiers."""
+        if ref is None or ref.object_id is None:
+            return None
+        quals = tuple(
+            Qualifier(
+                _qualifier_relation(g),
+                tuple(p for p in (self._phrase(r) for r in g.refs) if p is not None),
+                tuple(g.places),
+            )
+            for g in qualifiers or []
+        )
+        if ref.pronoun or not ref.words:
+            named = next(
+                (r for c in self.clauses for r in c.refs() if r.object_id == ref.object_id and not r.pronoun and r.words),
+                None,
+            )
+            ref = named or ref
+        words = ref.words or tuple(ref.text.split())
+        free = ref.object_id is not None and ref.object_id.startswith(FREE)
+        if free:
+            assert ref.object_id is not None
+            words = tuple(ref.object_id[len(FREE) :].split())
+        words = words or (ref.text,)
+        return NounPhrase(
+            " ".join(words), words[-1], tuple(words[:-1]), None if free else ref.object_id, quals
+        )
+
+    def _roles(self, act: _Action) -> tuple[str | None, Ref | None, Ref | None]:
         task: str | None = None
         if act.kind == "pick":
             task = "pick_up"
@@ -224,8 +327,10 @@ class _Composer:
         elif act.kind == "place_nodest":
             self.reasons.append(f"'{act.verb}' without a destination")
         elif act.kind == "release":
+            task = "other"
             self.reasons.append(f"'{act.verb}' is not one of the tasks")
         else:
+            task = "other"
             clause = act.clauses[-1]
             if clause.recipient:
                 self.reasons.append(f"'{act.verb}' hands the object to a person")
@@ -257,7 +362,7 @@ class _Composer:
             self.reasons.append(f"relation '{others[0].phrase}' is none of near / on / in")
         return TASK_OF_RELATION[places[0].relation] if places else None
 
-    def _one(self, refs: list[Ref], role: str, required: bool) -> str | None:
+    def _one(self, refs: list[Ref], role: str, required: bool) -> Ref | None:
         for r in refs:
             if r.problem:
                 self.reasons.append(r.problem)
@@ -265,34 +370,74 @@ class _Composer:
                 self.reasons.append(f"'{r.text}' asks for a quantity")
         ids = list(dict.fromkeys(r.object_id for r in refs if r.object_id))
         if len(ids) > 1:
-            self.reasons.append(f"more than one {role}: {', '.join(ids)}")
+            self.reasons.append(f"more than one {role}: {', '.join(_shown(i) for i in ids)}")
         if not ids and required and not any(r.problem for r in refs):
             self.reasons.append(f"no {role} named")
-        return ids[0] if ids else None
+        return next(r for r in refs if r.object_id == ids[0]) if ids else None
 
-    def _check_negations(self, negated: list[Clause], source: str | None) -> None:
+    def _check_negations(self, negated: list[Clause], source: str | None) -> bool:
+        found = False
         for c in negated:
             ids = {r.object_id for r in c.refs() if r.object_id}
             if source is not None and source not in ids and ids:
                 continue  # an exclusion: "pick up the coke can, not the pepsi can"
             if source is not None:
+                found = True
                 self.reasons.append(f"negated: '{c.negation} {c.verb_text()}'")
+        return found
 
     def _check_mentions(
         self, main: _Action | None, negated: list[Clause], source: str | None, target: str | None
     ) -> None:
         in_main = {id(c) for c in main.clauses} if main else set()
         excluded = {id(c) for c in negated}
+        described = {id(r) for c in (main.clauses if main else []) for g in c.governed if g.qualifier for r in g.refs}
         for c in self.clauses:
             if c.kind == "manner" or id(c) in excluded:
                 continue
             if c.alternatives:
                 self.reasons.append("alternative objects ('or')")
             for r in c.refs():
+                if id(r) in described:
+                    continue
                 if id(c) not in in_main and r.problem:
                     self.reasons.append(r.problem)
                 if r.object_id and r.object_id not in (source, target):
-                    self.reasons.append(f"mentions another object: {r.object_id}")
+                    self.reasons.append(f"mentions another object: {_shown(r.object_id)}")
+
+
+_NOT_LOCATING = frozenset({"with", "for", "through", "across", "against", "around", "over", "along"})
+
+
+def _locates(g: Governed) -> bool:
+    """Whether a relation can say where a thing is ("next to", "on", "from", "between"; not "with")."""
+    return g.phrase not in _NOT_LOCATING
+
+
+def _qualifier_relation(g: Governed) -> str:
+    """near | on | in | from | the relation word itself ("between", "of")."""
+    if g.relation in PLACEMENT:
+        return g.relation
+    if g.relation == "reverse":
+        return "from"
+    return g.phrase
+
+
+def _shown(key: str) -> str:
+    """A role key as shown in reasons: a catalog id, or a free phrase in quotes."""
+    return f"'{key[len(FREE):]}'" if key.startswith(FREE) else key
+
+
+def to_parse(frame: Frame, free_problems: dict[str, str] | None = None) -> InstructionParse:
+    """The catalog-only view of a frame: roles as catalog ids; a free phrase in a role is a reason."""
+    reasons = [frame.reason] if frame.reason else []
+    ids: list[str | None] = []
+    for phrase in (frame.object, frame.destination):
+        if phrase is not None and phrase.free:
+            reasons.append((free_problems or {}).get(phrase.text) or f"'{phrase.text}' names no known object")
+        ids.append(phrase.object_id if phrase is not None else None)
+    task = frame.task if frame.task in TASKS else None
+    return InstructionParse(frame.text, task, ids[0], ids[1], "; ".join(dict.fromkeys(reasons)) or None, frame.notes)
 
 
 def _reverse_word(clause: Clause) -> str:
@@ -312,16 +457,31 @@ class InstructionParser:
         self.catalog = catalog or load_catalog()
         self.index = name_index(self.catalog)
 
+    def read(self, text: str, scene_objects: Iterable[str] | None = None) -> Frame:
+        """The frame of an instruction (noun phrases the catalog does not name stay free)."""
+        return self._read(text, scene_objects)[0]
+
     def parse(self, text: str, scene_objects: Iterable[str] | None = None) -> InstructionParse:
+        """The catalog-only view: roles as catalog ids (a free phrase in a role is a reason)."""
+        frame, problems = self._read(text, scene_objects)
+        return to_parse(frame, problems)
+
+    def _read(self, text: str, scene_objects: Iterable[str] | None) -> tuple[Frame, dict[str, str]]:
         scene = frozenset(scene_objects) if scene_objects else None
         if not text or not text.strip():
-            return InstructionParse(text, None, None, None, "empty instruction")
+            return Frame(text, None, reason="empty instruction"), {}
         tokens = tag_tokens(text, self.index)
         reader = ClauseReader(self.index, scene)
         clauses = [reader.read(c) for c in split_clauses(tokens)]
         if not clauses:
-            return InstructionParse(text, None, None, None, "no words to read")
-        return _Composer(text, clauses).compose()
+            return Frame(text, None, reason="no words to read"), {}
+        problems = {
+            r.object_id[len(FREE) :]: r.free_problem
+            for c in clauses
+            for r in c.refs()
+            if r.free and r.object_id is not None and r.free_problem
+        }
+        return _Composer(text, clauses).compose(), problems
 
     def canonical_text(self, text: str) -> str:
         """The instruction with every object name replaced by its display name.
@@ -356,13 +516,18 @@ def _surface_pattern(normalized: str) -> re.Pattern[str]:
 _DEFAULT: dict[int, InstructionParser] = {}
 
 
-def parse_instruction(
-    text: str, scene_objects: Iterable[str] | None = None, catalog: Catalog | None = None
-) -> InstructionParse:
-    """Parse one instruction (parser cached per catalog)."""
+def default_parser(catalog: Catalog | None = None) -> InstructionParser:
+    """The parser of a catalog (the default catalog when None), built once."""
     cat = catalog or load_catalog()
     parser = _DEFAULT.get(id(cat))
     if parser is None or parser.catalog is not cat:
         parser = InstructionParser(cat)
         _DEFAULT[id(cat)] = parser
-    return parser.parse(text, scene_objects)
+    return parser
+
+
+def parse_instruction(
+    text: str, scene_objects: Iterable[str] | None = None, catalog: Catalog | None = None
+) -> InstructionParse:
+    """Parse one instruction into catalog ids (parser cached per catalog)."""
+    return default_parser(catalog).parse(text, scene_objects)

@@ -198,8 +198,10 @@ def _tag_word(
         return Token("PUNCT", w)
     if w in lx.CONJUNCTIONS:
         return Token("CONJ", w)
-    if w in lx.PARTICLES:
-        return Token("PART", w)
+    if w in _STATIVE_PARTICIPLES and prev is not None and prev.kind in ("OBJ", "WORD"):
+        return Token("ADV", w)  # "the bowl sitting on the cabinet": describes where it is
+    if w in lx.PARTICLES and not (after_det and _starts_phrase(words, i + 1, index)):
+        return Token("PART", w)  # after a determiner it describes the noun: "the back compartment"
     if is_adverb(w) and w not in lx.VERBS:
         return Token("ADV", w)
     if w in lx.NEGATIONS and not (w == "no" and after_det):
@@ -234,6 +236,12 @@ def _tag_word(
         cls, lemma = lx.VERBS[w]
         return Token("VERB", w, verb_class=cls, lemma=lemma)
     return Token("WORD", w)
+
+
+_STATIVE_PARTICIPLES = frozenset(
+    ["sitting", "resting", "lying", "standing", "placed", "located", "positioned", "kept", "situated", "lying", "sat", "laid", "stored"]
+)
+"""Participles that, right after a noun phrase, say where it is rather than ask for an action."""
 
 
 def is_sentence_end(token: Token) -> bool:

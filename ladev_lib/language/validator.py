@@ -10,11 +10,15 @@ Two checks, both recorded for every candidate:
    vouches for ("aubergine" for "eggplant": 0.42 as written, 0.87 canonical)
    should not sink a candidate, while wording that drifts from the task still
    does. Only candidates that need it pay for the second embedding.
-2. **Structure**: the candidate is read back into (task, source, target) —
-   by the offline parser, or by an LLM through the ``parse_instruction`` job —
-   and must equal the original's.
+2. **Structure**: both sentences are read into frames (task, object,
+   destination as noun phrases) — by the offline reader, or by an LLM through
+   the ``parse_instruction`` job — each phrase is grounded (against the
+   scene's objects when given: catalog ids or plain names; otherwise the
+   catalog, unknown nouns staying free text), and the grounded frames must be
+   equal (:mod:`ladev_lib.language.grounding`).
 
 A candidate is valid when both hold; otherwise ``reason`` says which failed.
+Every verdict keeps both frames and the grounding of each phrase.
 """
 
 from __future__ import annotations
@@ -26,7 +30,11 @@ from typing import Protocol
 import numpy as np
 
 from ladev_lib.catalog import Catalog, load_catalog
+from ladev_lib.catalog.catalog import normalize_name
+from ladev_lib.language.frames import Frame, NounPhrase
+from ladev_lib.language.grounding import Grounder, Grounding, SceneObject
 from ladev_lib.language.parser import InstructionParse, InstructionParser
+from ladev_lib.language.tasks import needs_destination
 
 DEFAULT_THRESHOLD = 0.45
 """A safety net for drift the structural check cannot see ("The history of the Roman empire
@@ -64,6 +72,36 @@ class OfflineReader:
     ) -> list[InstructionParse]:
         return [self.parser.parse(t, s) for t, s in zip(texts, scene_objects, strict=True)]
 
+    def read_frames(
+        self, texts: Sequence[str], scene_objects: Sequence[frozenset[str] | None]
+    ) -> list[Frame]:
+        return [self.parser.read(t, s) for t, s in zip(texts, scene_objects, strict=True)]
+
+
+def frame_of_parse(parse: InstructionParse, catalog: Catalog) -> Frame:
+    """A catalog-id reading (an LLM's, or a scene spec's task) as a frame."""
+
+    def phrase(object_id: str | None) -> NounPhrase | None:
+        if object_id is None:
+            return None
+        words = normalize_name(catalog.get(object_id).display_name).split() if object_id in catalog else [object_id]
+        return NounPhrase(" ".join(words), words[-1], tuple(words[:-1]), object_id)
+
+    return Frame(parse.text, parse.task, phrase(parse.source), phrase(parse.target), reason=parse.reason)
+
+
+def catalog_view(frame: Frame, groundings: Sequence[Grounding | None]) -> InstructionParse:
+    """Roles as grounded ids (catalog ids or scene names), free text where nothing grounds."""
+    ids: list[str | None] = []
+    for phrase, g in zip((frame.object, frame.destination), groundings, strict=True):
+        if phrase is None:
+            ids.append(None)
+        elif g is not None and g.object_id is not None:
+            ids.append(g.object_id)
+        else:
+            ids.append(phrase.object_id or phrase.text)
+    return InstructionParse(frame.text, frame.task, ids[0], ids[1], frame.reason, frame.notes)
+
 
 @dataclass(frozen=True)
 class Verdict:
@@ -77,11 +115,17 @@ class Verdict:
     """The same with object names replaced by display names; computed only when
     ``similarity`` is below the threshold (None otherwise)."""
     expected: InstructionParse
+    """The original's roles as grounded ids (free text where nothing grounds)."""
     parse: InstructionParse
+    """The candidate's roles as grounded ids."""
     similar: bool
     """max(similarity, canonical_similarity) >= threshold."""
     same_structure: bool
     reason: str | None
+    expected_frame: Frame | None = None
+    frame: Frame | None = None
+    groundings: tuple[str, ...] = ()
+    """How each phrase of both frames was grounded ("'dinner plate' -> plate (head)")."""
 
     @property
     def valid(self) -> bool:
@@ -107,6 +151,44 @@ def structure_mismatch(expected: InstructionParse, got: InstructionParse) -> str
     if got.target != expected.target:
         return f"destination changed: {expected.target} -> {got.target}"
     return None
+
+
+def frame_mismatch(
+    expected: Frame, got: Frame, grounder: Grounder, scene: Sequence[SceneObject] | None
+) -> tuple[str | None, list[Grounding | None], list[Grounding | None]]:
+    """Why ``got`` does not ask for what ``expected`` asks for (None if it does), and the groundings."""
+    g_exp: list[Grounding | None] = [None, None]
+    g_got: list[Grounding | None] = [None, None]
+    for k, phrase in enumerate((expected.object, expected.destination)):
+        g_exp[k] = grounder.ground(phrase, scene) if phrase is not None else None
+    for k, phrase in enumerate((got.object, got.destination)):
+        g_got[k] = grounder.ground(phrase, scene) if phrase is not None else None
+    if not expected.ok:
+        return f"original not understood: {expected.reason}", g_exp, g_got
+    if not got.ok:
+        return f"candidate not understood: {got.reason}", g_exp, g_got
+    if got.task != expected.task:
+        return f"task changed: {expected.task} -> {got.task}", g_exp, g_got
+    if expected.object is None or got.object is None:
+        return "no object to act on", g_exp, g_got
+    same_obj, why_obj, _, _ = grounder.compare(expected.object, got.object, scene)
+    same_dest, why_dest = True, None
+    if needs_destination(expected.task or ""):
+        if expected.destination is None or got.destination is None:
+            return "no destination", g_exp, g_got
+        same_dest, why_dest, _, _ = grounder.compare(expected.destination, got.destination, scene)
+        if not same_obj and not same_dest:
+            swapped = (
+                grounder.compare(expected.object, got.destination, scene)[0]
+                and grounder.compare(expected.destination, got.object, scene)[0]
+            )
+            if swapped:
+                return f"roles swapped: '{got.object.text}' is now moved to '{got.destination.text}'", g_exp, g_got
+    if not same_obj:
+        return f"object changed: {why_obj}", g_exp, g_got
+    if not same_dest:
+        return f"destination changed: {why_dest}", g_exp, g_got
+    return None, g_exp, g_got
 
 
 def cpu_has_native_bf16() -> bool:
@@ -150,8 +232,10 @@ class ParaphraseValidator:
             raise ValueError(f"similarity threshold must be in [0, 1], got {threshold}")
         self.embedder = embedder
         self.threshold = threshold
-        self.parser = InstructionParser(catalog or load_catalog())
+        self.catalog = catalog or load_catalog()
+        self.parser = InstructionParser(self.catalog)
         self.reader = reader or OfflineReader(self.parser)
+        self.grounder = Grounder(self.catalog, embedder)
         self.cache_size = cache_size
         if precision not in ("fp32", "bf16"):
             raise ValueError(f"precision must be fp32 or bf16, got {precision!r}")
@@ -204,20 +288,23 @@ class ParaphraseValidator:
             zip(low, np.round(canonical_raw, SIMILARITY_DECIMALS).tolist(), strict=True)
         )
         given = list(expected) if expected is not None else [None] * len(pairs)
+        grounded = {s: self.grounder.scene(sorted(s)) for s in dict.fromkeys(scenes) if s}
+        ids = {s: frozenset(o.catalog_id for o in g if o.catalog_id) for s, g in grounded.items()}
         originals = list(
             dict.fromkeys((o, s) for (o, _), s, e in zip(pairs, scenes, given, strict=True) if e is None)
         )
-        parsed_originals = dict(
-            zip(originals, self.reader.read([o for o, _ in originals], [s for _, s in originals]), strict=True)
-        )
-        candidate_parses = self.reader.read([c for _, c in pairs], scenes)
+        read_originals = self._frames([o for o, _ in originals], [ids.get(s) if s else None for _, s in originals])
+        parsed_originals = dict(zip(originals, read_originals, strict=True))
+        candidate_frames = self._frames([c for _, c in pairs], [ids.get(s) if s else None for s in scenes])
         verdicts = []
         for i, ((orig, cand), scene) in enumerate(zip(pairs, scenes, strict=True)):
-            exp = given[i] or parsed_originals[(orig, scene)]
-            got = candidate_parses[i]
-            mismatch = structure_mismatch(exp, got)
+            given_i = given[i]
+            exp = frame_of_parse(given_i, self.catalog) if given_i is not None else parsed_originals[(orig, scene)]
+            got = candidate_frames[i]
+            scene_objs = grounded.get(scene) if scene else None
+            mismatch, g_exp, g_got = frame_mismatch(exp, got, self.grounder, scene_objs)
             best = max(float(raw[i]), canonical.get(i, -1.0))
-            similar = best >= self.threshold
+            similar = round(best, 4) >= self.threshold  # fp32 noise must not flip a verdict at the threshold
             reasons = []
             if not similar:
                 reasons.append(
@@ -231,14 +318,22 @@ class ParaphraseValidator:
                     candidate=cand,
                     similarity=float(raw[i]),
                     canonical_similarity=canonical.get(i),
-                    expected=exp,
-                    parse=got,
+                    expected=catalog_view(exp, g_exp),
+                    parse=catalog_view(got, g_got),
                     similar=similar,
                     same_structure=mismatch is None,
                     reason="; ".join(reasons) or None,
+                    expected_frame=exp,
+                    frame=got,
+                    groundings=tuple(g.describe() for g in [*g_exp, *g_got] if g is not None),
                 )
             )
         return verdicts
+
+    def _frames(self, texts: Sequence[str], scenes: Sequence[frozenset[str] | None]) -> list[Frame]:
+        if isinstance(self.reader, OfflineReader):
+            return self.reader.read_frames(texts, scenes)
+        return [frame_of_parse(p, self.catalog) for p in self.reader.read(texts, scenes)]
 
     def validate(
         self,

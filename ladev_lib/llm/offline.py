@@ -28,7 +28,8 @@ if TYPE_CHECKING:
 RULES_VERSION = "1"
 
 HANDLER_MODULES: tuple[str, ...] = (
-    "ladev_lib.llm.offline_scenes",  # describe_scenes, compile_scene
+    "ladev_lib.scenes.offline_jobs",  # compile_scene (the scene reader)
+    "ladev_lib.study.offline_jobs",  # describe_scenes (the scene writer)
     "ladev_lib.language.offline_jobs",  # paraphrase, parse_instruction (the language work)
 )
 """Modules that register offline jobs when imported; they and everything they

@@ -6,8 +6,9 @@
 What it does, in order:
 
 1. resolves every named object against the catalog (:mod:`ladev_lib.scenes.resolve`);
-   an unavailable object rejects the scene (or, with ``unknown_objects:
-   substitute``, becomes a random one, with a note);
+   an unavailable object is left out and reported by name in the notes (or,
+   with ``unknown_objects: reject``, rejects the scene; with ``substitute``,
+   becomes a random one); one the task names rejects the scene;
 2. makes sure the task's source and target are in the scene (they take the
    place of a random object, or are added) and that the task is possible with
    them (a put_in target must be a container the source fits in);
@@ -61,8 +62,10 @@ class CompileConfig(BaseModel):
         description="Cosine similarity an embedding match needs; above 1 switches embedding matching off.",
     )
     embedding_model: str = Field(default="all-MiniLM-L6-v2", description="Sentence embedding model for matching.")
-    unknown_objects: Literal["reject", "substitute"] = Field(
-        default="reject", description="An object not in the catalog rejects the scene, or becomes a random one."
+    unknown_objects: Literal["omit", "reject", "substitute"] = Field(
+        default="omit",
+        description="An object not in the catalog is left out and reported by name (omit), rejects the scene, "
+        "or becomes a random one (substitute). One the task names always rejects the scene.",
     )
     default_num_objects: tuple[int, int] = Field(
         default=(1, 4), description="Range of objects (source + distractors) when the text names none."
@@ -199,7 +202,9 @@ class _Compilation:
 
     def build_slots(self) -> None:
         for op in self.ops.objects:
-            self.slots.append(self._slot_for(op))
+            slot = self._slot_for(op)
+            if slot is not None:
+                self.slots.append(slot)
         if not self.ops.objects:
             lo, hi = self.config.default_num_objects
             n = int(self.rng.integers(lo, hi + 1))
@@ -213,10 +218,13 @@ class _Compilation:
                 if not any(s is not slot and _same(s, res) for s in self.slots):
                     self._ensure(res, "reference", pos.reference)
 
-    def _slot_for(self, op: AddObject) -> _Slot:
+    def _slot_for(self, op: AddObject) -> _Slot | None:
         if op.object is None or not op.object.strip():
             return _Slot(position=op.position)
         res = self.resolve(op.object, "object")
+        if not res.ok and self.config.unknown_objects == "omit":
+            self.notes.append(f"unavailable: {res.describe()}; left out")
+            return None
         if not res.ok:
             self.notes.append(f"unavailable: {res.describe()}; a random object takes its place")
             return _Slot(position=op.position, mention=op.object)
@@ -256,7 +264,12 @@ class _Compilation:
                 self.notes.append(f"pick_up has no target; {task.target!r} ignored")
             return
         if task.target:
-            tgt = self._ensure(self.resolve(task.target, "task target"), "target", task.target)
+            tres = self.resolve(task.target, "task target")
+            if tres.obj is not None and src.obj is not None and tres.obj.id == src.obj.id and not any(
+                s is not src and s.obj is not None and s.obj.id == tres.obj.id for s in self.slots
+            ):
+                raise _Reject(f"impossible task: source and target are the same object ({task.target!r})")
+            tgt = self._ensure(tres, "target", task.target)
             if tgt is src:
                 raise _Reject(f"impossible task: source and target are the same object ({task.target!r})")
         else:
@@ -493,7 +506,8 @@ def _compile(
         objs = comp.draw()
         src_obj = objs[_index(comp, "source")]
         tgt_obj = objs[_index(comp, "target")] if task.type in TASKS_WITH_TARGET else None
-        why = task_feasibility(task.type, src_obj, tgt_obj)
+        named = _fixed(comp, "source") and (tgt_obj is None or _fixed(comp, "target"))
+        why = task_feasibility(task.type, src_obj, tgt_obj, strict=not named)
         if why:
             if _fixed(comp, "source") and (tgt_obj is None or _fixed(comp, "target")):
                 raise _Reject(f"impossible task: {why}")

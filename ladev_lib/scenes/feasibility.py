@@ -31,13 +31,20 @@ def fits_on(source: CatalogObject, target: CatalogObject) -> str | None:
     return None
 
 
-def fits_in(source: CatalogObject, container: CatalogObject) -> str | None:
-    """None if ``source`` fits inside ``container``, else why not."""
+def fits_in(source: CatalogObject, container: CatalogObject, strict: bool = True) -> str | None:
+    """None if ``source`` fits inside ``container``, else why not.
+
+    ``strict``: the source fits lying along the opening (what random scenes are
+    drawn with). Not strict: it may also lie across the opening's diagonal, as
+    a person placing a named object would put it (a marker in a mug, a banana
+    in a bowl); what a description names is checked this way.
+    """
     if not container.container:
         return f"{container.display_name!r} is not a container"
     s_min, s_max = _horizontal(source)
     c_min, c_max = (v - 2 * CONTAINER_WALL_M for v in _horizontal(container))
-    if s_min + 0.005 > c_min or s_max > c_max + 0.02:
+    reach = c_max + 0.02 if strict else max(c_max + 0.02, (c_min**2 + c_max**2) ** 0.5)
+    if s_min + 0.005 > c_min or s_max > reach:
         return (
             f"{source.display_name!r} ({s_min * 100:.1f} x {s_max * 100:.1f} cm) does not fit in "
             f"{container.display_name!r} (opening about {c_min * 100:.1f} x {c_max * 100:.1f} cm)"
@@ -52,12 +59,14 @@ def fits_in(source: CatalogObject, container: CatalogObject) -> str | None:
     return None
 
 
-def task_feasibility(task: str, source: CatalogObject, target: CatalogObject | None) -> str | None:
-    """None if the task can be done with these objects, else why not."""
+def task_feasibility(
+    task: str, source: CatalogObject, target: CatalogObject | None, strict: bool = True
+) -> str | None:
+    """None if the task can be done with these objects, else why not (``strict``: see :func:`fits_in`)."""
     if not source.graspable:
         return f"{source.display_name!r} is not graspable"
     if task == "put_on" and target is not None:
         return fits_on(source, target)
     if task == "put_in" and target is not None:
-        return fits_in(source, target)
+        return fits_in(source, target, strict)
     return None

@@ -76,6 +76,27 @@ class PlacementError(ValueError):
     """The objects cannot be placed without collision in the workspace."""
 
 
+def _place_fixed(
+    requests: list[PlacementRequest],
+    fixed: list[int],
+    yaws: dict[int, float],
+    grow: float,
+    placed: dict[int, Placed],
+    prints: list[Footprint],
+) -> str | None:
+    """Place the objects at given coordinates; the first collision, described, or None."""
+    for i in fixed:
+        r = requests[i]
+        assert r.x is not None and r.y is not None
+        fp = footprint(r.obj, r.x, r.y, yaws[i], grow)
+        for j, other in zip(placed, prints, strict=True):
+            if overlaps(fp, other):
+                return f"{r.obj.display_name!r} at ({r.x:.2f}, {r.y:.2f}) overlaps {requests[j].obj.display_name!r}"
+        placed[i] = Placed(r.obj, r.x, r.y, yaws[i])
+        prints.append(fp)
+    return None
+
+
 def place_objects(
     requests: list[PlacementRequest],
     workspace_x: tuple[float, float],
@@ -91,19 +112,29 @@ def place_objects(
 
     fixed = [i for i, r in enumerate(requests) if r.x is not None and r.y is not None]
     free = [i for i, r in enumerate(requests) if i not in fixed]
+    yaws: dict[int, float] = {}
     for i in fixed:
-        r = requests[i]
-        assert r.x is not None and r.y is not None
-        yaw = r.yaw_deg if r.yaw_deg is not None else float(rng.uniform(-180, 180))
-        fp = footprint(r.obj, r.x, r.y, yaw, grow)
-        for j, other in zip(placed, prints, strict=True):
-            if overlaps(fp, other):
-                raise PlacementError(
-                    f"{r.obj.display_name!r} at ({r.x:.2f}, {r.y:.2f}) overlaps "
-                    f"{requests[j].obj.display_name!r}"
-                )
-        placed[i] = Placed(r.obj, r.x, r.y, yaw)
-        prints.append(fp)
+        given = requests[i].yaw_deg
+        yaws[i] = given if given is not None else float(rng.uniform(-180, 180))
+    clash = _place_fixed(requests, fixed, yaws, grow, placed, prints)
+    if clash is not None:
+        # Objects at given coordinates with no given yaw may turn (square to the table, across it,
+        # diagonally) to clear each other; only tried when the drawn yaws collide, so scenes that
+        # placed before place the same.
+        placed.clear()
+        prints.clear()
+        for i in fixed:
+            r = requests[i]
+            assert r.x is not None and r.y is not None
+            turns = [yaws[i]] if r.yaw_deg is not None else [0.0, 90.0, 45.0, 135.0, yaws[i]]
+            for yaw in turns:
+                fp = footprint(r.obj, r.x, r.y, yaw, grow)
+                if not any(overlaps(fp, other) for other in prints):
+                    break
+            else:
+                raise PlacementError(clash)
+            placed[i] = Placed(r.obj, r.x, r.y, yaw)
+            prints.append(fp)
 
     # Largest footprints first: they are the hardest to fit.
     # Objects confined to a region go before the others of the same size class.

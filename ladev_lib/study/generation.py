@@ -21,9 +21,9 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from ladev_lib.catalog import Catalog
 from ladev_lib.errors import LLMCallError
+from ladev_lib.language.scene import parse_instruction
 from ladev_lib.llm.client import JsonResult, LLMClient
 from ladev_lib.llm.config import LLMConfig
-from ladev_lib.llm.grammar import parse_instruction
 from ladev_lib.llm.prompts import PromptTemplate, build_request
 from ladev_lib.scenes.text_to_scene import object_listing
 from ladev_lib.study.design import Batch, DesignedScene, StudyConfig, plan_batches

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import json
 
 from click.testing import CliRunner
 
@@ -59,3 +60,32 @@ def test_validate_paraphrases_names_missing_columns(repo_root, tmp_path):
     result = CliRunner().invoke(cli, ["validate-paraphrases", str(bad), "-o", str(tmp_path / "o.csv")])
     assert result.exit_code != 0
     assert "missing column(s) original, candidate" in result.output
+
+
+def test_validate_paraphrases_takes_scene_names_or_ids_and_never_drops_a_row(repo_root, tmp_path, minilm):
+    pairs = tmp_path / "pairs.csv"
+    with open(pairs, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["id", "original", "candidate", "scene_objects"])
+        w.writerow(["names", "put the bowl on the plate", "put the bowl on the dinner plate", "black bowl; plate"])
+        w.writerow(["ids", "put the bowl on the plate", "put the bowl on the dinner plate", "024_bowl;plate"])
+        w.writerow(["unknown id", "pick up the coke can", "lift the coke can", "black"])
+        w.writerow(["empty", "pick up the coke can", "", "coke_can"])
+        w.writerow(["bad cell", "pick up the coke can", "lift the coke can", "@@@; coke_can"])
+        w.writerow(["free nouns", "put the wine bottle on the rack", "set the bottle of wine on the rack", ""])
+    out = tmp_path / "verdicts.csv"
+    result = CliRunner().invoke(
+        cli, ["validate-paraphrases", str(pairs), "-o", str(out), "--config-dir", str(repo_root / "conf")]
+    )
+    assert result.exit_code == 0, result.output
+    with open(out, newline="") as f:
+        rows = {r["id"]: r for r in csv.DictReader(f)}
+    assert list(rows) == ["names", "ids", "unknown id", "empty", "bad cell", "free nouns"]
+    assert rows["names"]["valid"] == "True" and rows["names"]["parsed_target"] == "plate"
+    assert rows["ids"]["valid"] == "True" and "'dinner plate' -> plate" in rows["ids"]["groundings"]
+    assert rows["unknown id"]["valid"] == "False" and "not in the scene" in rows["unknown id"]["reason"]
+    assert rows["empty"]["valid"] == "False" and "empty instruction" in rows["empty"]["reason"]
+    assert rows["bad cell"]["valid"] == "False" and "unreadable scene_objects" in rows["bad cell"]["reason"]
+    assert rows["free nouns"]["valid"] == "True"
+    frame = json.loads(rows["free nouns"]["candidate_frame"])
+    assert frame["object"]["text"] == "wine bottle" and frame["destination"]["text"] == "rack"

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from collections import Counter
 
+import pytest
+
 from ladev_lib.language.evaluation import evaluate_validator, load_labelled_pairs
 from ladev_lib.language.parser import parse_instruction
 
@@ -31,3 +33,21 @@ def test_ladev_validator_meets_targets_and_beats_similarity_alone(repo_root, val
     assert ev.similarity_best_f1.f1 <= ev.ladev.f1 - 0.2
     assert ev.similarity_at_recall.precision <= 0.8
     assert ev.similarity_best_f1.fp > 10 * max(ev.ladev.fp, 1)
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "paraphrase_pairs.csv",
+        "paraphrase_pairs_holdout.csv",
+        "paraphrase_pairs_open_vocab.csv",
+        "paraphrase_pairs_open_vocab_holdout.csv",
+    ],
+)
+def test_every_meaning_change_is_caught(repo_root, validator, name):
+    """Object, role, task, destination, negation, extra step, partial: no 'different' pair is valid."""
+    pairs = load_labelled_pairs(repo_root / "tests/data" / name)
+    verdicts = validator.validate_pairs([(p.original, p.candidate) for p in pairs], [p.scene_objects for p in pairs])
+    missed = [(p.category, p.original, p.candidate) for p, v in zip(pairs, verdicts, strict=True) if v.valid and not p.same]
+    assert not missed
+    assert all(v.reason for p, v in zip(pairs, verdicts, strict=True) if not p.same)

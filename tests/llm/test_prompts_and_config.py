@@ -8,8 +8,8 @@ import pytest
 
 from ladev_lib.config import compose_config, section
 from ladev_lib.errors import ConfigError
+from ladev_lib.language.scene import Vocabulary, read_description
 from ladev_lib.llm.config import LLMConfig
-from ladev_lib.llm.grammar import Vocabulary, read_description
 from ladev_lib.llm.prompts import PromptTemplate, build_request, load_prompts, render_messages
 from ladev_lib.scenes.operations import SceneOperations, operations_json_schema
 from ladev_lib.scenes.text_to_scene import object_listing
@@ -36,7 +36,8 @@ def test_compile_examples_are_valid_and_agree_with_the_offline_rules(params, cat
         expected = SceneOperations.model_validate_json(example.assistant)
         lines = example.user.strip().splitlines()
         description = "\n".join(lines[:-1]).removeprefix("Description: ")
-        instruction = lines[-1].removeprefix("Basic instruction: ")
+        last = lines[-1]
+        instruction = last.removeprefix("Basic instruction: ") if last.startswith("Basic instruction: ") else None
         ours = SceneOperations.model_validate(read_description(description, vocab, instruction))
         assert len(ours.objects) == len(expected.objects), description
         assert ours.task == expected.task and bool(ours.error) == bool(expected.error)

@@ -86,3 +86,50 @@ def test_candidate_embeddings_are_cached(retriever):
     cached = len(retriever._cache)
     retriever.choose("put the apple on the plate", tasks)
     assert len(retriever._cache) == cached
+
+
+# -- the reader mode (the default) -------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def reader():
+    from ladev_lib.language.grounding import Grounder
+    from ladev_lib.policies.grounded import TaskReader
+
+    catalog = load_catalog()
+    return TaskReader(catalog, Grounder(catalog, load_embedder()))
+
+
+def read(reader, ids, instruction):
+    catalog = load_catalog()
+    reading = reader.read(instruction, [(i, catalog.get(i)) for i in ids])
+    t = reading.task
+    return (t.task, t.source, t.target) if t else reading.reason
+
+
+@pytest.mark.parametrize(
+    ("objects", "instruction", "expected"),
+    [
+        (["coke_can", "pepsi_can"], "grab the can of coke", ("pick_up", "coke_can", None)),
+        (["carrot", "plate"], "put the carrot on the dinner plate", ("put_on", "carrot", "plate")),
+        (["carrot", "orange", "basket"], "I'd like the carrot to end up in the basket", ("put_in", "carrot", "basket")),
+        (["eggplant", "carrot"], "pick up the eggplant", ("pick_up", "eggplant", None)),
+    ],
+)
+def test_reader_reads_the_task_on_the_table(reader, objects, instruction, expected):
+    assert read(reader, objects, instruction) == expected
+
+
+@pytest.mark.parametrize(
+    ("objects", "instruction", "why"),
+    [
+        (["carrot", "plate"], "do nothing", "no task verb"),
+        (["carrot", "plate"], "don't put the carrot on the plate", "negated"),
+        (["apple", "orange", "basket"], "put the fruit in the basket", "ambiguous"),
+        (["carrot", "plate"], "pick up the stapler", "not in the scene"),
+        (["carrot", "plate", "sponge"], "put the plate on the carrot", "not afforded"),
+    ],
+)
+def test_reader_says_why_it_holds_still(reader, objects, instruction, why):
+    result = read(reader, objects, instruction)
+    assert isinstance(result, str) and why in result

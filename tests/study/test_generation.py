@@ -6,16 +6,16 @@ from collections import Counter
 
 import pytest
 
+from ladev_lib.language.scene import Vocabulary, read_description
 from ladev_lib.llm import LLMResponse
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig, make_client
-from ladev_lib.llm.grammar import Vocabulary, read_description
 from ladev_lib.llm.prompts import load_prompts
-from ladev_lib.llm.scene_writer import STYLES, write_scene
 from ladev_lib.scenes.compiler import DesignExpectation, compile_operations
 from ladev_lib.scenes.operations import SceneOperations
 from ladev_lib.scenes.resolve import ObjectResolver
 from ladev_lib.scenes.text_to_scene import object_listing
+from ladev_lib.scenes.writer import STYLES, write_scene
 from ladev_lib.study.design import design_scenes
 from ladev_lib.study.generation import generate_descriptions
 

@@ -14,11 +14,11 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
-from ladev_lib.llm.grammar.words import NUM, length_scale
+from ladev_lib.language.scene.words import NUM, length_scale
 
 LIGHT_WORDS = re.compile(
     r"\b(?:light|lights|lighting|lit|illumination|illuminated|brightness|lamp|lamps|exposure|"
-    r"brighter|darker|dimmer|dimmed|dim|dimly|darken|darkened|brighten|brightened|luminosity|"
+    r"brighter|darker|dimmer|dimmed|dim|dimly|darken|darkened|brighten|brightened|luminosity|as bright|"
     r"set lighting|set_lighting)\b"
 )
 CAMERA_WORDS = re.compile(
@@ -27,7 +27,8 @@ CAMERA_WORDS = re.compile(
 MOTION = re.compile(
     rf"(?:{NUM}\s*(?:cm|mm|m|centimet(?:er|re)s?|millimet(?:er|re)s?|met(?:er|re)s?|inch(?:es)?|deg|degrees?)\b)|"
     r"\b(?:tilt(?:ed|s)?|pan(?:ned|s)?|rotat(?:e|ed|es|ion)|roll(?:ed|s)?|yaw(?:ed)?|pitch(?:ed)?|"
-    r"turn(?:ed|s)?|shift(?:ed|s)?|mov(?:e|ed|es)|rais(?:e|ed)|lower(?:ed)?)\b"
+    r"turn(?:ed|s)?|shift(?:ed|s)?|mov(?:e|ed|es)|rais(?:e|ed)|lower(?:ed)?|translat\w*|dolly|dollied)\b|"
+    rf"\b(?:dx|dy|dz|x|y|z)\s*[:=]\s*{NUM}"
 )
 DEFAULT_WORDS = re.compile(
     r"\b(?:default|normal|unchanged|standard|regular|usual|no change|no changes|as is|original|untouched|nominal)\b"
@@ -60,6 +61,26 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     if factor is not None:
         value = float(factor.group(1) or factor.group(2))
         return {"op": "set_lighting", "intensity_delta": round(value - 1.0, 4)}
+    text = re.sub(rf"({NUM})\s*(?:percent|per cent|pct)\b", r"\1%", text)
+    text = re.sub(r"\b(\d) quarters\b", lambda m: f" {int(m.group(1)) * 25}% ", text)
+    text = re.sub(r"\b(\d) tenths?\b", lambda m: f" {int(m.group(1)) * 10}% ", text)
+    text = re.sub(r"\b(?:a )?tenth\b", " 10% ", text)
+    # "at 60% of default", "dim to 40% of normal", "85% brightness": a level, not a change
+    level = re.search(
+        rf"({NUM})\s*%\s*(?:of\s+(?:the\s+)?(?:default|normal|usual|full|original|standard|regular)|brightness|intensity)"
+        rf"|\b(?:at|to)\s+(?:about\s+|around\s+)?({NUM})\s*%",
+        text,
+    )
+    if level is not None:
+        value = float(level.group(1) or level.group(2))
+        return {"op": "set_lighting", "intensity_delta": round(value / 100 - 1.0, 4)}
+    text = re.sub(r"\b(?:a )?quarter\b", " 25% ", text)
+    text = re.sub(r"\b(?:a )?fifth\b", " 20% ", text)
+    text = re.sub(r"\b(?:a )?third\b", " 33% ", text)
+    if re.search(r"\bhalf as (?:bright|light|strong|intense)\b", text):
+        return {"op": "set_lighting", "intensity_delta": -0.5}
+    if re.search(r"\b(?:twice|double) as (?:bright|light|strong|intense)\b|\bdoubled?\b", text):
+        return {"op": "set_lighting", "intensity_delta": 1.0}
     text = re.sub(r"\b(?:by )?half\b|\bhalved\b", " 50% ", text)
     nums = [m for m in re.finditer(rf"(?<![\w.@]){NUM}(?:\s*(%))?", text)]
     darker, brighter = DARKER.search(text), BRIGHTER.search(text)
@@ -117,7 +138,9 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
             translation = [a + b * scale for a, b in zip(translation, values, strict=True)]
         moved = True
         text = text.replace(key, " ")
-    for part in re.split(r"\band\b|,|\bthen\b", text):
+    for part in re.split(r"\band\b|,|\bthen\b|\bbut\b|\s\+\s", text):
+        if re.search(r"\b(?:dont|do not|not|never|without|no)\s+(?:\w+\s+)?(?:rotat|tilt|pan|roll|yaw|pitch|turn|mov|shift|translat)", part):
+            continue  # "don't rotate it"
         t, r, ok = camera_motion(part)
         if ok:
             translation = [a + b for a, b in zip(translation, t, strict=True)]
@@ -139,22 +162,34 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
     strength = 2.0 if SLIGHT.search(part) else 5.0 if STRONG.search(part) else 3.0
     found = False
     # Signed axis values: "x+0.02", "dy = -3 cm", "yaw -2", "pitch: 3 deg".
+    # Signed axis values are in the camera's own frame, as camera operators write them:
+    # x right, y forward (toward the table), z up; yaw + pans right, pitch + tilts up,
+    # roll + turns clockwise seen from behind. The spec's frame is the workspace's
+    # (x away from the robot, y to its left; yaw + pans left, pitch + tilts down).
+    cm_default = re.search(r"\(\s*cm\s*\)|\bin cm\b|\bcm\b", part) is not None
+    worded = re.search(
+        r"\b(?:left|right|up|upward|down|downward|clockwise|counterclockwise|counter clockwise|anticlockwise)\b", part
+    )
     for m in re.finditer(
-        rf"\b(dx|dy|dz|x|y|z|roll|pitch|yaw)\s*[:=]?\s*({NUM})\s*(cm|mm|m|deg|degrees?)?\b", part
+        rf"\b(dx|dy|dz|x|y|z|roll|pitch|yaw)\s*[:=]?\s*({NUM})\s*(cm|mm|m|deg|degrees?)?(?![\w.])", part
     ):
         axis, value, unit = m.group(1), float(m.group(2)), m.group(3)
+        if axis in ("roll", "pitch", "yaw") and worded is not None and value >= 0:
+            continue  # "roll 3 degrees counterclockwise": the words give the sense
         if axis in ("roll", "pitch", "yaw"):
-            rotation[("roll", "pitch", "yaw").index(axis)] += value
+            rotation[("roll", "pitch", "yaw").index(axis)] -= value
         else:
-            scale = length_scale(unit) if unit else (0.01 if abs(value) > 0.5 else 1.0)
-            translation["xyz".index(axis[-1])] += value * scale
+            scale = length_scale(unit) if unit else 0.01 if cm_default or abs(value) > 0.5 else 1.0
+            frame_axis, sign = {"x": (1, -1.0), "y": (0, 1.0), "z": (2, 1.0)}[axis[-1]]
+            translation[frame_axis] += sign * value * scale
         found = True
     for m in re.finditer(
         rf"({NUM})\s*(cm|mm|m)?\s*(?:in|along|on)\s+(?:the\s+)?(x|y|z)(?:\s*(?:axis|direction))?\b", part
     ):
         value, unit, axis = float(m.group(1)), m.group(2), m.group(3)
         scale = length_scale(unit) if unit else (0.01 if abs(value) > 0.5 else 1.0)
-        translation["xyz".index(axis)] += value * scale
+        frame_axis, sign = {"x": (1, -1.0), "y": (0, 1.0), "z": (2, 1.0)}[axis]
+        translation[frame_axis] += sign * value * scale
         found = True
     if found:
         return translation, rotation, True
@@ -164,7 +199,7 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
     angle = re.search(rf"({NUM})\s*(?:deg|degrees?)\b", part)
     rotate_verb = re.search(r"\b(tilt\w*|pan\w*|rotat\w*|roll\w*|yaw\w*|pitch\w*|turn\w*|angled)\b", part)
     direction = re.search(
-        r"\b(left|right|up|upward|upwards|down|downward|downwards|forward|forwards|closer|"
+        r"\b(left|right|up|upward|upwards|down|downward|downwards|forward|forwards|closer|toward|towards|"
         r"backward|backwards|back|away|farther|further|higher|lower|raised|lowered|in|out|"
         r"clockwise|counterclockwise|counter clockwise|anticlockwise|anti clockwise)\b",
         part,
@@ -206,7 +241,7 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
         "left": (1, 1.0), "right": (1, -1.0), "up": (2, 1.0), "upward": (2, 1.0), "upwards": (2, 1.0),
         "higher": (2, 1.0), "raised": (2, 1.0), "down": (2, -1.0), "downward": (2, -1.0),
         "downwards": (2, -1.0), "lower": (2, -1.0), "lowered": (2, -1.0), "forward": (0, 1.0),
-        "forwards": (0, 1.0), "closer": (0, 1.0), "in": (0, 1.0), "backward": (0, -1.0),
+        "forwards": (0, 1.0), "closer": (0, 1.0), "in": (0, 1.0), "toward": (0, 1.0), "towards": (0, 1.0), "backward": (0, -1.0),
         "backwards": (0, -1.0), "back": (0, -1.0), "away": (0, -1.0), "farther": (0, -1.0),
         "further": (0, -1.0), "out": (0, -1.0),
     }.get(dir_word, (1, 1.0))

@@ -6,7 +6,9 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from ladev_lib.llm.grammar.environment import (
+from ladev_lib.language.frames import read_instruction
+from ladev_lib.language.scene.corrections import apply_corrections
+from ladev_lib.language.scene.environment import (
     BRIGHTER,
     CAMERA_WORDS,
     DARKER,
@@ -17,15 +19,18 @@ from ladev_lib.llm.grammar.environment import (
     read_camera,
     read_lighting,
 )
-from ladev_lib.llm.grammar.instruction import parse_instruction
-from ladev_lib.llm.grammar.objects import (
+from ladev_lib.language.scene.instruction import parse_instruction
+from ladev_lib.language.scene.objects import (
     canonical_name,
+    expand_groups,
     find_region,
     find_relation,
     quantity,
+    singular,
     unknown_phrase,
 )
-from ladev_lib.llm.grammar.words import (
+from ladev_lib.language.scene.statements import find_task
+from ladev_lib.language.scene.words import (
     COUNT_TOTAL,
     HEADERS,
     KEYED_COUNT,
@@ -37,6 +42,16 @@ from ladev_lib.llm.grammar.words import (
     split_clauses,
     split_sentences,
 )
+
+_RANDOM_GROUP = re.compile(
+    r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
+    r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
+)
+_MEMBER = re.compile(
+    r"\b(?:\d+|one|some)\s+of\s+(?:them|which|those|these|the \d+)\b|\bamong\s+(?:them|which|those)\b|"
+    r"\binclud(?:e|es|ing)\b|\bone being\b|\bof which\b"
+)
+
 
 # -- results ---------------------------------------------------------------------
 
@@ -70,6 +85,9 @@ class _Reader:
         self.slots = slots
         self.out = _Reading()
         self._previous_domain: str | None = None
+        self._listy = True
+        self._sentence_randoms = 0
+        self._sentence_first = 0
 
     def read(self, text: str) -> _Reading:
         domain_hint: str | None = None
@@ -92,10 +110,34 @@ class _Reader:
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
         self._object_set(sentence)
+        # An unknown noun is an object only where the sentence lists objects (names a catalog
+        # object, counts objects or adds one), not in chat around the scene.
+        self._listy = bool(
+            self.vocab.name_pattern.search(sentence)
+            or COUNT_TOTAL.search(f" {sentence} ")
+            or re.search(
+                r"^\s*(?:\+|add|spawn|place|objects?|objs?|items?|a|an|\d+)\b|\b(?:objects?|items?)\s*[:=]", sentence
+            )
+            or hint == "objects"
+        )
+        # "yaw: +4.5 degrees": an axis and its value stay together
+        sentence = re.sub(r"\b(yaw|pitch|roll|dx|dy|dz)\s*[:=]\s*(?=[-+]?\d)", r"\1 ", sentence)
+        # "towel: back" / "towel = left": a position given as a value
+        sentence = re.sub(
+            r"\s*[:=]\s*(?=(?:left|right|front|back|center|centre|middle|rear|far side|near side)\b)", " at the ", sentence
+        )
         # "objects: 2" would be cut apart at the colon below: read it first.
+        self._sentence_randoms = 0
+        self._sentence_first = len(self.out.objects)
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
-            if self.out.total is None:
+            qualifier = re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()])
+            if qualifier is not None:
+                self.out.randoms += int(keyed.group(1))  # "random objects: 2"
+                sentence = sentence[: qualifier.start()] + " " + sentence[keyed.start():]
+                keyed = KEYED_COUNT.search(sentence)
+                assert keyed is not None
+            elif self.out.total is None:
                 self.out.total = int(keyed.group(1))
             self.out.recognised += 1
             sentence = sentence[: keyed.start()] + " " + sentence[keyed.end():]
@@ -168,8 +210,9 @@ class _Reader:
         for m in COUNT_TOTAL.finditer(text):
             n = int(next(g for g in m.groups() if g is not None))
             span = m.group(0)
-            if RANDOM_QUALIFIER.search(span):
+            if RANDOM_QUALIFIER.search(span) or re.search(r"\b(?:any|random)\s*$", text[: m.start()]):
                 self.out.randoms += n
+                self._sentence_randoms += n
                 self.out.random_positions.append(None)
             elif self.out.total is None:
                 self.out.total = n
@@ -178,7 +221,20 @@ class _Reader:
                 self.out.random_positions.append(None)
             consumed = True
             text = text.replace(span, " ", 1)
-        if re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
+        # "2 other balls", "3 fruits at random": free choices, whatever the noun
+        for m in list(_RANDOM_GROUP.finditer(text)):
+            noun_at = m.start("noun") if m.group("noun") else m.start("noun2")
+            if self.vocab.name_pattern.match(text, noun_at) or (m.group("noun") or "").split()[0:1] in (
+                ["objects"], ["object"], ["items"], ["item"], ["things"], ["thing"],
+            ):
+                continue
+            n = int(m.group("n") or m.group("n2"))
+            self.out.randoms += n
+            self._sentence_randoms += n
+            self.out.random_positions.append(None)
+            consumed = True
+            text = text.replace(m.group(0), " ", 1)
+        if not consumed and re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
             n_match = re.search(r"\d+", text)
             n = int(n_match.group(0)) if n_match else 1
             self.out.randoms += n
@@ -211,13 +267,35 @@ class _Reader:
             position = position or {"region": region}
             consumed = True
 
-        # Named objects, with quantities ("2 apples").
+        # Named objects, with quantities ("2 apples"). A definite mention of an
+        # object already described ("the bowl in the middle", "towel: back") is
+        # that object again, not another one.
         found: list[_ObjectOp] = []
-        for m in list(self.vocab.name_pattern.finditer(text)):
+        matches = list(self.vocab.name_pattern.finditer(text))
+        for m in matches:
             name = canonical_name(self.vocab, m.group(0))
-            qty = quantity(text[: m.start()])
+            before = text[: m.start()]
+            earlier = [o for o in self.out.objects if o.mention == name]
+            definite = re.search(r"\b(?:the|that|this|its|both|said|same)\s+(?:\w+\s+)?$", before) is not None
+            bare_update = (
+                not re.search(r"\b(?:a|an|another|one|\d+|add|plus|and|also)\s+(?:\w+\s+)?$", before)
+                and len(matches) == 1 and position is not None and not found
+            )
+            if earlier and (definite or bare_update):
+                target = earlier[-1] if position is None else next(
+                    (o for o in reversed(earlier) if o.position is None), earlier[-1]
+                )
+                if position is not None:
+                    target.position = position
+                    position = None
+                self.out.recognised += 1
+                last = target
+                continue
+            qty = quantity(before)
             for _ in range(qty):
                 found.append(_ObjectOp(name))
+        if matches and not found:
+            return last
         text_wo_names = self.vocab.name_pattern.sub(" @n@ ", text)
         if not found:
             for m in self.vocab.category_pattern.finditer(text):
@@ -225,17 +303,32 @@ class _Reader:
                 qty = quantity(m.group(0)[: m.start("cat") - m.start()])
                 found.extend(_ObjectOp(cat) for _ in range(qty))
             text_wo_names = self.vocab.category_pattern.sub(" @n@ ", text_wo_names)
-        if not found:
+        if not found and self._listy:
             unknown = unknown_phrase(text_wo_names)
             if unknown:
-                found.append(_ObjectOp(unknown, unknown=True))
+                at = text_wo_names.find(unknown)
+                qty = quantity(text_wo_names[:at]) if at >= 0 else 1
+                mention = singular(unknown) if qty > 1 else unknown
+                found.extend(_ObjectOp(mention, unknown=True) for _ in range(qty))
 
+        if found and self._sentence_randoms > 0 and _MEMBER.search(text):
+            # "four random objects, one of them a banana": the banana is one of the four
+            taken = min(len(found), self._sentence_randoms)
+            self._sentence_randoms -= taken
+            self.out.randoms -= taken
         if found:
             if position is not None:
                 found[-1].position = position
             self.out.objects.extend(found)
             self.out.recognised += 1
             return found[-1]
+        if position is not None and re.search(r"\b(?:all|both|each|all of them|both of them)\b", text):
+            # "a pepsi can and a sprite can, all lined up at the front": every object of the sentence
+            for obj in self.out.objects[self._sentence_first:]:
+                if obj.position is None:
+                    obj.position = dict(position)
+            self.out.recognised += 1
+            return last
         if position is not None:
             if consumed and self.out.random_positions and self.out.random_positions[-1] is None and last is None:
                 self.out.random_positions[-1] = position
@@ -256,17 +349,30 @@ def read_description(
     instruction: str | None = None,
     task: str | None = None,
 ) -> dict[str, Any]:
-    """Description (+ instruction or task type) -> a SceneOperations-shaped dict."""
-    text = normalize_text(description or "", vocab)
+    """Description (+ instruction or task type) -> a SceneOperations-shaped dict.
+
+    The task is, in order: the explicit ``instruction``; the task the
+    description states (its statements are not read as objects); ``task``
+    (a type alone). Task statements are taken out of the text either way.
+    """
+    found = find_task(description or "", vocab.ids)
+    text, dropped = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
     reading = _Reader(vocab, slots).read(protected)
+    for name in dropped:
+        canonical = canonical_name(vocab, name)
+        idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]
+        if idx:
+            del reading.objects[idx[-1]]
+            if reading.total is not None:
+                reading.total -= 1  # "three objects: a, b and c. drop c": two
 
     out: dict[str, Any] = {"schema_version": 1, "operations": []}
     if reading.object_set:
         out["object_set"] = reading.object_set
-    instruction = instruction or reading.task_line
+    stated = found.task
     if instruction:
-        parsed = parse_instruction(instruction)
+        parsed = _instruction_task(instruction, vocab)
         if parsed is None:
             out["error"] = (
                 f"the instruction {instruction!r} is none of the four task forms "
@@ -274,10 +380,23 @@ def read_description(
             )
             return out
         out["task"] = parsed
+    elif stated is not None:
+        out["task"] = stated
+    elif found.statement and (retry := _task_in_scene(found.statement, reading, vocab)) is not None:
+        out["task"] = retry  # "pick up bottle" in a scene with one bottle
+        stated = retry
+    elif found.statement or reading.task_line:
+        what = found.statement or reading.task_line
+        out["error"] = (
+            f"the task {what!r} is none of the four task forms "
+            "(pick up X; move X near Y; put X on Y; put X in Y)"
+        )
+        return out
     elif task:
         out["task"] = {"type": task}
+    recognised_task = 1 if stated is not None else 0  # a description that states only its task is read
 
-    if description.strip() and reading.recognised == 0:
+    if description.strip() and reading.recognised + recognised_task == 0:
         out["error"] = "no object, object count, position, lighting or camera setting found in the description"
         return out
 
@@ -301,3 +420,44 @@ def read_description(
     ops.extend(merge_camera(reading.camera))
     out["operations"] = ops
     return out
+
+
+def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | None:
+    """An explicit instruction's task, objects as the vocabulary names them; None if none of the four."""
+    found = find_task(f"task: {instruction}", vocab.ids)
+    if found.task is not None:
+        return found.task
+    frame = read_instruction(instruction)
+    if frame.task is not None and frame.task != "other" and frame.object is not None:
+        return {
+            "type": frame.task,
+            "source": frame.object.text,
+            "target": frame.destination.text if frame.destination is not None and frame.task != "pick_up" else None,
+        }
+    return parse_instruction(instruction)
+
+
+def _task_in_scene(statement: str, reading: _Reading, vocab: Vocabulary) -> dict[str, Any] | None:
+    """A task statement read again with the described objects as its scene ("the bottle" = the one there)."""
+    by_name = {name: cid for cid, name in vocab.ids.items()}
+    ids = [by_name[o.mention] for o in reading.objects if o.mention in by_name]
+    if not ids:
+        return None
+    frame = read_instruction(statement, scene_objects=ids)
+    if frame.task is None or frame.task == "other" or frame.object is None or not frame.ok:
+        return None
+    if frame.task != "pick_up" and frame.destination is None:
+        return None
+
+    def name(phrase: Any) -> str | None:
+        if phrase is None:
+            return None
+        oid = getattr(phrase, "object_id", None)
+        text = str(phrase.text)
+        return vocab.ids.get(oid, text) if oid is not None else text
+
+    return {
+        "type": frame.task,
+        "source": name(frame.object),
+        "target": name(frame.destination) if frame.task != "pick_up" else None,
+    }

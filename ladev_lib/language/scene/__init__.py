@@ -21,17 +21,19 @@ The task comes from the basic instruction ("put the carrot on the plate"),
 or a "task:" / "instruction:" line in the description, or the task type alone.
 """
 
-from ladev_lib.llm.grammar.instruction import parse_instruction
-from ladev_lib.llm.grammar.reader import read_description
-from ladev_lib.llm.grammar.words import Vocabulary, normalize_text
+from ladev_lib.language.scene.instruction import parse_instruction
+from ladev_lib.language.scene.reader import read_description
+from ladev_lib.language.scene.words import Vocabulary, normalize_text
 
 RULE_MODULES = (
-    "ladev_lib.llm.grammar",
-    "ladev_lib.llm.grammar.words",
-    "ladev_lib.llm.grammar.objects",
-    "ladev_lib.llm.grammar.environment",
-    "ladev_lib.llm.grammar.instruction",
-    "ladev_lib.llm.grammar.reader",
+    "ladev_lib.language.scene",
+    "ladev_lib.language.scene.words",
+    "ladev_lib.language.scene.corrections",
+    "ladev_lib.language.scene.statements",
+    "ladev_lib.language.scene.objects",
+    "ladev_lib.language.scene.environment",
+    "ladev_lib.language.scene.instruction",
+    "ladev_lib.language.scene.reader",
 )
 """The modules the grammar's rules live in (fingerprinted by the offline backend)."""
 

@@ -50,6 +50,11 @@ FILLERS = {
     "besides", "beside", "apart", "except", "alongside", "together", "respectively", "whose",
     "where", "who", "what", "while", "but", "so", "such", "e.g", "eg", "ie", "etc",
     "sim", "simulation", "simulated", "test", "tabletop", "task", "instruction",
+    "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
+    "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
+    "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "okay", "ok", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
+    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "honestly", "thank",
+    "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
 STOP_PREPOSITIONS = {
     "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
@@ -71,7 +76,7 @@ COUNT_TOTAL = re.compile(
     r"|(?:\b(?:a total of|total of|in total|altogether)\s*(\d+)\b)"
     r"|(?:\b(\d+)\s+(?:(?:different|distinct|total|items?|objects?|things?|props?|pieces?|random|other|more|additional|extra|"
     r"distractors?|small|household|kitchen|everyday|assorted|various|ycb|simplerenv|simpler)\s+){0,3}?"
-    r"(?:objects?|items?|things?|props?|pieces?|distractors?)\b)"
+    r"(?:objects?|objs?|items?|things?|props?|pieces?|distractors?)\b)"
 )
 KEYED_COUNT = re.compile(
     r"\b(?:number of objects|num_objects|n_objects|objects|object count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)"
@@ -127,6 +132,10 @@ class Vocabulary:
             names.add(display)
             for s in o.get("synonyms", ()) or ():
                 names.add(_norm_name(str(s)))
+        for n in list(names):
+            spaced = re.sub(r"(?<=\d)(?=[a-z])", " ", n)
+            if spaced != n:
+                names.add(spaced)
             ids[str(o["id"]).lower()] = display
             if o.get("category"):
                 categories.add(str(o["category"]).replace("_", " "))
@@ -214,14 +223,20 @@ def protect_coordinates(text: str) -> tuple[str, dict[str, tuple[float, ...]]]:
         return f" {key} "
 
     text = _COORD3.sub(keep3, text)
-    text = _COORD2.sub(keep2, text)
+    # "cam: x=-3 y=0" are camera axes, not an object's position: leave what follows a camera word
+    lines = []
+    for line in text.split("\n"):
+        cam = re.search(r"\b(?:camera|cam|view|viewpoint)\b", line)
+        cut = cam.start() if cam is not None else len(line)
+        lines.append(_COORD2.sub(keep2, line[:cut]) + line[cut:])
+    text = "\n".join(lines)
     # "2 cans: a pepsi can and a sprite can" states the count, like "2 objects: ...".
     text = re.sub(r"\b(\d+)\s+[a-z]+s\s*:", r"\1 objects:", text)
     return text, slots
 
 
 def split_sentences(text: str) -> list[str]:
-    parts = re.split(r"(?<!\d)\.(?!\d)|[;\n!?]|(?<=\d)\.(?=\s|$)", text)
+    parts = re.split(r"(?<!\d)\.(?!\d)|[;\n!?|•]|(?<=\d)\.(?=\s|$)", text)
     return [p.strip(" \t-*•:,") for p in parts if p and p.strip(" \t-*•:,")]
 
 
@@ -232,5 +247,5 @@ SPLIT_WORDS = re.compile(
 
 
 def split_clauses(sentence: str) -> list[str]:
-    parts = re.split(rf",|:|(?<!~)(?:{SPLIT_WORDS.pattern})(?!~)", sentence)
+    parts = re.split(rf",|:|\s\+\s|(?<!~)(?:{SPLIT_WORDS.pattern})(?!~)", sentence)
     return [p.strip() for p in parts if p and p.strip()]

@@ -1,0 +1,305 @@
+"""Ground a noun phrase: which object of the scene (or of the catalog) it names.
+
+    g = Grounder(catalog, embedder)
+    g.ground(NounPhrase("dinner plate", "plate", ("dinner",), "029_plate"), g.scene(["024_bowl", "plate"]))
+    -> Grounding(object_id="plate", how="head")      # the scene's one plate
+
+Grounding is its own step after reading, tried in order:
+
+1. **exact**: the phrase is a name (or synonym) of one scene object;
+2. **head**: the phrase's head noun (or a group noun: "fruit", "container")
+   fits exactly one scene object and its modifiers fit that object (colour,
+   name words; size words fit anything);
+3. **embedding**: the phrase's sentence embedding is nearest one scene
+   object's name, above ``min_similarity`` and by ``margin`` over the
+   runner-up.
+
+Two candidates within the margin (or two heads that fit) are *ambiguous*: a
+reason, never a guess. Without a scene the catalog is the pool, and a phrase
+the catalog does not name stays free text. Scene entries may be catalog ids
+or plain names ("black bowl"); plain names are objects of their own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+from ladev_lib.arrays import Array
+from ladev_lib.catalog import Catalog, load_catalog
+from ladev_lib.catalog.catalog import normalize_name
+from ladev_lib.language import lexicon as lx
+from ladev_lib.language.frames import NounPhrase, Qualifier
+from ladev_lib.language.mentions import NameIndex, name_index
+
+DEFAULT_MARGIN = 0.05
+"""Cosine margin the best scene object needs over the runner-up to be chosen by embedding."""
+DEFAULT_MIN_SIMILARITY = 0.60
+"""Lowest phrase-to-name cosine similarity that grounds by embedding."""
+FREE_SAME_SIMILARITY = 0.80
+"""Two phrases with different head nouns name the same thing at this similarity or above."""
+
+
+class PhraseEmbedder(Protocol):
+    def encode(self, texts: Sequence[str]) -> Array: ...
+
+
+@dataclass(frozen=True)
+class SceneObject:
+    """One object of a scene: a catalog object, or a plain name the catalog does not know."""
+
+    key: str
+    """The catalog id, or the normalised plain name."""
+    names: tuple[str, ...]
+    """Normalised names (display name first)."""
+    catalog_id: str | None = None
+
+
+@dataclass(frozen=True)
+class Grounding:
+    """What a phrase names, and how that was decided."""
+
+    phrase: NounPhrase
+    object_id: str | None
+    """A scene object's key (catalog id or plain name), a catalog id without a scene, or None."""
+    how: str
+    """exact | head | embedding | catalog | free | ambiguous | absent"""
+    candidates: tuple[str, ...] = ()
+    reason: str | None = None
+
+    def describe(self) -> str:
+        target = self.object_id or "-"
+        text = f"'{self.phrase.text}' -> {target} ({self.how})"
+        return f"{text}: {self.reason}" if self.reason else text
+
+
+class Grounder:
+    """Grounds noun phrases against a scene's objects or the catalog."""
+
+    def __init__(
+        self,
+        catalog: Catalog | None = None,
+        embedder: PhraseEmbedder | None = None,
+        margin: float = DEFAULT_MARGIN,
+        min_similarity: float = DEFAULT_MIN_SIMILARITY,
+    ) -> None:
+        self.catalog = catalog or load_catalog()
+        self.index: NameIndex = name_index(self.catalog)
+        self.embedder = embedder
+        self.margin = margin
+        self.min_similarity = min_similarity
+        self._vectors: dict[str, Array] = {}
+
+    # -- scenes ------------------------------------------------------------------
+    def scene(self, entries: Iterable[str]) -> tuple[SceneObject, ...]:
+        """Scene objects from catalog ids or plain names (a name the catalog knows is its object)."""
+        cleaned = [e.strip() for e in entries if e.strip()]
+        known: dict[str, str | None] = {}
+        for entry in cleaned:
+            name = normalize_name(entry.replace("_", " "))
+            known[entry] = entry if entry in self.catalog else self.index.names.get(tuple(name.split()))
+        count: dict[str | None, int] = {}
+        for cid in known.values():
+            count[cid] = count.get(cid, 0) + 1
+        out: list[SceneObject] = []
+        for entry in cleaned:
+            cid = known[entry]
+            if cid is not None and (entry == cid or count[cid] == 1):
+                out.append(self._catalog_object(cid))
+            else:
+                # a plain name; two names for one catalog object ("plate", "dish") stay two objects
+                name = normalize_name(entry.replace("_", " "))
+                out.append(SceneObject(name, (name,)))
+        return tuple(out)
+
+    def _catalog_object(self, object_id: str) -> SceneObject:
+        obj = self.catalog.get(object_id)
+        return SceneObject(object_id, tuple(normalize_name(n) for n in obj.names), object_id)
+
+    # -- grounding ---------------------------------------------------------------
+    def ground(self, phrase: NounPhrase, scene: Sequence[SceneObject] | None = None) -> Grounding:
+        if scene:
+            return self._in_scene(phrase, scene)
+        if phrase.object_id is not None:
+            return Grounding(phrase, phrase.object_id, "catalog")
+        return Grounding(phrase, None, "free")
+
+    def _in_scene(self, phrase: NounPhrase, scene: Sequence[SceneObject]) -> Grounding:
+        # 1. exact name or synonym
+        exact = [o.key for o in scene if phrase.text in o.names or (phrase.object_id and o.key == phrase.object_id)]
+        if len(set(exact)) == 1:
+            return Grounding(phrase, exact[0], "exact")
+        if len(exact) > 1:
+            return self._ambiguous(phrase, exact)
+        # 2. head noun and modifiers
+        fits = [o.key for o in scene if self._head_fits(phrase, o, scene)]
+        if len(fits) == 1:
+            return Grounding(phrase, fits[0], "head")
+        if len(fits) > 1:
+            return self._ambiguous(phrase, fits)
+        # 3. embedding similarity with a margin
+        if self.embedder is not None:
+            scored = sorted(
+                ((self._similarity(phrase.text, o), o.key) for o in scene), reverse=True
+            )
+            best, key = scored[0]
+            second = scored[1][0] if len(scored) > 1 else -1.0
+            if best >= self.min_similarity:
+                if best - second >= self.margin:
+                    return Grounding(phrase, key, "embedding", reason=None)
+                close = [k for s, k in scored if best - s < self.margin]
+                return self._ambiguous(phrase, close)
+        return Grounding(phrase, None, "absent", reason=f"'{phrase.text}' is not in the scene")
+
+    def _ambiguous(self, phrase: NounPhrase, keys: Sequence[str]) -> Grounding:
+        keys = tuple(dict.fromkeys(keys))
+        return Grounding(
+            phrase, None, "ambiguous", keys, f"'{phrase.text}' is ambiguous: {', '.join(keys)}"
+        )
+
+    def _head_fits(self, phrase: NounPhrase, obj: SceneObject, scene: Sequence[SceneObject]) -> bool:
+        head = _singular(phrase.head)
+        heads = {_singular(n.split()[-1]) for n in obj.names}
+        words = {w for n in obj.names for w in n.split()}
+        by_group = False
+        if obj.catalog_id is not None and head in lx.HYPERNYMS:
+            by_group = obj.catalog_id in self.index._candidates(head)
+        if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
+            if phrase.object_id is None or phrase.object_id == obj.catalog_id:
+                return False
+            # a catalog name outside the scene ("dinner plate"): its own head nouns count
+            own = {_singular(normalize_name(n).split()[-1]) for n in self.catalog.get(phrase.object_id).names}
+            if not own & heads:
+                return False
+        others = {w for o in scene if o.key != obj.key for n in o.names for w in n.split()}
+        for word in phrase.modifiers:
+            if word in words or word in lx.SIZE_WORDS:
+                continue
+            if obj.catalog_id is not None and word in _COLOURS:
+                if not self.index.compatible(obj.catalog_id, [word]):
+                    return False
+                continue
+            if word in _COLOURS or word in others:
+                return False  # a colour the plain name does not state, or another object's word
+        return True
+
+    def _similarity(self, text: str, obj: SceneObject) -> float:
+        assert self.embedder is not None
+        vectors = self._embed([text, *obj.names])
+        return max(float(vectors[text] @ vectors[n]) for n in obj.names)
+
+    def _embed(self, texts: Sequence[str]) -> dict[str, Array]:
+        todo = [t for t in dict.fromkeys(texts) if t not in self._vectors]
+        if todo:
+            assert self.embedder is not None
+            self._vectors.update(zip(todo, self.embedder.encode(todo), strict=True))
+        return {t: self._vectors[t] for t in texts}
+
+    # -- comparing two phrases ------------------------------------------------------
+    def compare(
+        self, a: NounPhrase, b: NounPhrase, scene: Sequence[SceneObject] | None = None
+    ) -> tuple[bool, str | None, Grounding, Grounding]:
+        """Whether two phrases name the same object, why not, and both groundings."""
+        ga, gb = self.ground(a, scene), self.ground(b, scene)
+        for g in (ga, gb):
+            if g.how in ("ambiguous", "absent"):
+                return False, g.reason, ga, gb
+        colours_a = {_COLOUR_ALIASES.get(w, w) for w in a.modifiers if w in _COLOURS}
+        colours_b = {_COLOUR_ALIASES.get(w, w) for w in b.modifiers if w in _COLOURS}
+        if colours_a and colours_b and not colours_a & colours_b:
+            return False, f"'{a.text}' -> '{b.text}' (another colour)", ga, gb
+        why = self._qualifiers_differ(a, b, scene)
+        if why is not None:
+            return False, why, ga, gb
+        if ga.object_id is not None and gb.object_id is not None:
+            if ga.object_id == gb.object_id:
+                return True, None, ga, gb
+            if not scene:
+                return False, f"{ga.object_id} -> {gb.object_id} (different catalog objects; no scene given)", ga, gb
+            return False, f"{ga.object_id} -> {gb.object_id}", ga, gb
+        same = self._same_text(a, b, ga.object_id, gb.object_id)
+        return same, None if same else f"'{a.text}' -> '{b.text}'", ga, gb
+
+    def _qualifiers_differ(
+        self, a: NounPhrase, b: NounPhrase, scene: Sequence[SceneObject] | None
+    ) -> str | None:
+        """Why two phrases' locating relations disagree ("next to the plate" vs "on the plate").
+
+        A phrase without qualifiers is less specific, not different; where both
+        locate the object, the first relation with landmarks must agree (a
+        "from" fits "on" and "in") and every landmark of the shorter list must
+        match one of the other's.
+        """
+        qa = [_with_places(q) for q in a.qualifiers if q.landmarks or q.places]
+        qb = [_with_places(q) for q in b.qualifiers if q.landmarks or q.places]
+        if not qa or not qb:
+            return None
+        ra, rb = qa[0].relation, qb[0].relation
+        if ra != rb and not ({ra, rb} <= {"from", "on", "in"} and "from" in {ra, rb}):
+            return f"'{a.text} {ra} ...' -> '{b.text} {rb} ...'"
+        la = [p for q in qa for p in q.landmarks]
+        lb = [p for q in qb for p in q.landmarks]
+        short, long_ = (la, lb) if len(la) <= len(lb) else (lb, la)
+        for p in short:
+            if not any(self.compare(_bare(p), _bare(o), scene)[0] for o in long_):
+                return f"landmark '{p.text}' not in '{' / '.join(o.text for o in long_)}'"
+        return None
+
+    def _fits_catalog(self, phrase: NounPhrase, object_id: str) -> bool:
+        """A free phrase that describes a catalog object: its head and every modifier fit."""
+        if object_id not in self.catalog:
+            return False
+        names = [normalize_name(n).split() for n in self.catalog.get(object_id).names]
+        if not any(_singular(n[-1]) == _singular(phrase.head) for n in names):
+            return False
+        words = {w for n in names for w in n}
+        unknown = [w for w in phrase.modifiers if w not in words and w not in _COLOURS and w not in lx.SIZE_WORDS]
+        return not unknown and self.index.compatible(object_id, list(phrase.modifiers))
+
+    def _same_text(self, a: NounPhrase, b: NounPhrase, id_a: str | None, id_b: str | None) -> bool:
+        """Two phrases at least one of which is free: by head noun, else by embedding."""
+        if id_a is not None and self._fits_catalog(b, id_a) or id_b is not None and self._fits_catalog(a, id_b):
+            return True
+        if _singular(a.head) == _singular(b.head):
+            ma, mb = _descriptive(a.modifiers), _descriptive(b.modifiers)
+            return ma <= mb or mb <= ma
+        colours_a = {_COLOUR_ALIASES.get(w, w) for w in a.modifiers if w in _COLOURS}
+        colours_b = {_COLOUR_ALIASES.get(w, w) for w in b.modifiers if w in _COLOURS}
+        if colours_a and colours_b and colours_a != colours_b:
+            return False
+        if self.embedder is None:
+            return a.text == b.text
+        texts_a = [a.text] if id_a is None else [normalize_name(n) for n in self.catalog.get(id_a).names]
+        texts_b = [b.text] if id_b is None else [normalize_name(n) for n in self.catalog.get(id_b).names]
+        vectors = self._embed([*texts_a, *texts_b])
+        best = max(float(vectors[x] @ vectors[y]) for x in texts_a for y in texts_b)
+        return best >= FREE_SAME_SIMILARITY
+
+
+_COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
+_COLOUR_ALIASES = {"violet": "purple", "gray": "grey"}
+
+
+def _with_places(q: Qualifier) -> Qualifier:
+    """Places as landmarks too ("from the table center")."""
+    extra = tuple(NounPhrase(p, p.split()[-1], tuple(p.split()[:-1])) for p in q.places if p.split())
+    return Qualifier(q.relation, (*q.landmarks, *extra))
+
+
+def _bare(phrase: NounPhrase) -> NounPhrase:
+    return NounPhrase(phrase.text, phrase.head, phrase.modifiers, phrase.object_id)
+
+
+def _descriptive(modifiers: Iterable[str]) -> frozenset[str]:
+    return frozenset(w for w in modifiers if w not in lx.SIZE_WORDS)
+
+
+def _singular(word: str) -> str:
+    if word.endswith("ies") and len(word) > 4:
+        return word[:-3] + "y"
+    if word.endswith(("ches", "shes", "xes", "sses")):
+        return word[:-2]
+    if word.endswith("s") and not word.endswith("ss") and len(word) > 3:
+        return word[:-1]
+    return word

@@ -1,0 +1,106 @@
+"""Self-corrections and take-backs in a scene description, read as the writer means them.
+
+    text, dropped = apply_corrections(text, vocab)
+
+- "a bowl - no, make that a basket", "pan right 3 degrees - sorry, left: pan
+  left 3 degrees", "5 cm to the right - hmm, not enough, make it 8 cm": what
+  comes before the correction, back to the start of its clause, is taken back
+  (a camera or lighting word it held is kept, so "make it 8 cm" stays a camera
+  move);
+- "not a bowl, a mug", "no bowl", "without a sponge": the negated object is
+  not in the scene;
+- "drop the pepsi can", "scratch the softball", "remove the mug", "leave out
+  the lemon": an object described earlier is taken out (``dropped`` lists the
+  names, in order; the reader removes the last such object it read).
+
+The text is normalised (lower case, digits) when this runs.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ladev_lib.language.scene.words import Vocabulary
+
+_MARKER = re.compile(
+    r"\s*(?:-+|—|–|,|;|\(|\.\.\.)\s*"
+    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|"
+    r"hmm+|scratch that|i mean|or rather|on second thought|not quite|my bad|err?|um+)\b[\s,.:;!-]*)+"
+    r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|"
+    r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be)\b[\s,:]*)*"
+)
+_DIRECTIONS = (
+    "counterclockwise", "anticlockwise", "clockwise", "left", "right", "up", "down", "forward", "backward", "back",
+    "closer", "farther", "higher", "lower", "brighter", "darker", "dimmer",
+)
+_CLAUSE_START = re.compile(r"[:;.!?\n]|—|\s-+\s|\bthen\b")
+_KEEP = re.compile(r"\b(?:camera|cam|view|light|lights|lighting|brightness)\b")
+_REMOVE_VERB = (
+    r"(?:drop|scratch|remove|delete|skip|forget|lose|ditch|leave out|take out|take away|get rid of|no need for|"
+    r"cross out|cut)"
+)
+
+
+def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
+    """The text with taken-back statements removed, and the objects taken out by name."""
+    out = text
+    # 1. "X - no, make that Y": drop X (from its clause start) and the marker.
+    for _ in range(8):
+        m = _MARKER.search(out)
+        if m is None or not _has_content_after(out, m.end()):
+            break
+        starts = [c.end() for c in _CLAUSE_START.finditer(out, 0, m.start())]
+        start = starts[-1] if starts else 0
+        taken = out[start:m.start()]
+        # keep an object list's head ("a lemon, a bowl - no, a mug": only the last item goes)
+        items = [c.end() for c in re.finditer(r",|\band\b", taken)]
+        if items and vocab.name_pattern.search(taken[: items[-1]]):
+            start += items[-1]
+            taken = out[start:m.start()]
+        keep = " ".join(sorted({k.group(0) for k in _KEEP.finditer(taken)}))
+        after = out[m.end():]
+        short = re.match(r"\s*([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)
+        if short is not None and short.group(1).split()[0] in _DIRECTIONS:
+            # "roll 3 degrees clockwise - no, counterclockwise": only the direction changes
+            word = short.group(1).split()[0]
+            olds = [w for w in _DIRECTIONS if re.search(rf"\b{w}\b", taken)]
+            if olds:
+                fixed = re.sub(rf"\b{olds[0]}\b", word, taken, count=1)
+                out = out[:start] + fixed + after[short.end():]
+                continue
+        named = vocab.name_pattern.search(taken)
+        if named is not None:
+            # "a strawberry near the plate - no wait, put it on the right": 'it' is the strawberry
+            after = re.sub(r"^\s*(?:(?:put|place|set|move|make)\s+)?(?:it|that)\b", f" the {named.group(0)}", after, count=1)
+        out = out[:start] + f" {keep} " + after
+    # 2. "not a bowl, a mug" / "no bowl" / "without a sponge": the negated object is not there.
+    names = vocab.name_pattern.pattern
+    negation = r"\b(?:not|no|without|never|dont (?:add|include|put|want|need)|do not (?:add|include|put))\s+"
+    dropped: list[str] = []
+
+    def instead(m: re.Match[str]) -> str:
+        # "not a bowl, a mug": a bowl said before is replaced; else the mug is said again, not added again
+        said = re.search(rf"(?<![a-z]){re.escape(m.group(1))}(?![a-z])", out[: m.start()])
+        if said is not None:
+            dropped.append(m.group(1))
+            return " a "
+        return " the "
+
+    out = re.sub(rf"{negation}(?:a|an|the|any)?\s*({names})\s*,\s*(?:but\s+)?(?:a|an)\s+", instead, out)
+    out = re.sub(rf"{negation}(?:a|an|the|any)?\s*{names}\s*,?", " ", out)
+    out = re.sub(rf"\bnot\s+(?:near|next to|beside|by|on|in|behind|left of|right of)\s+(?:the|a|an)\s+{names}", " ", out)
+    # 3. "drop the pepsi can": an object described before is taken out.
+
+    def take_out(m: re.Match[str]) -> str:
+        dropped.append(m.group("name"))
+        return " "
+
+    out = re.sub(
+        rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<name>{names})(?=\s*(?:$|[,;.!]|\band\b|\breplace))",
+        take_out, out,
+    )
+    return out, dropped
+
+
+def _has_content_after(text: str, pos: int) -> bool:
+    return bool(re.match(r"\s*[a-z0-9+-]", text[pos:]))

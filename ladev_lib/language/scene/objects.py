@@ -1,0 +1,220 @@
+"""Object clauses: quantities, positions (relations, regions) and unknown object phrases."""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from ladev_lib.language.scene.words import FILLERS, SCENE_NOUNS, STOP_PREPOSITIONS, Vocabulary
+
+
+def canonical_name(vocab: Vocabulary, matched: str) -> str:
+    """The catalog's spelling of a matched name (plurals and digit forms undone)."""
+    canonical = vocab.canonical
+    if matched in canonical:
+        return canonical[matched]
+    for suffix in ("es", "s"):
+        if matched.endswith(suffix) and matched[: -len(suffix)] in canonical:
+            return canonical[matched[: -len(suffix)]]
+    return matched
+
+def quantity(before: str) -> int:
+    """How many of the next-named object: '2 apples', '2 of them are apples'."""
+    m = re.search(r"(?:^|\s)([1-9]\d?)\s+(?:[a-z]+\s+)?$", before)
+    if m and not re.search(r"\bof\s+(?:them|which)\s*$", before):
+        n = int(m.group(1))
+        return n if n <= 12 else 1
+    m = re.search(r"\b([1-9]\d?)\s+of\s+(?:them|which)\s+(?:are|being)\s+(?:[a-z]+\s+)?$", before)
+    if m:
+        return int(m.group(1))
+    return 1
+
+def find_relation(vocab: Vocabulary, text: str) -> tuple[dict[str, Any], str] | None:
+    """A position relative to another object ('near the bowl'), and the text without it."""
+    relations = [
+        (r"\b(?:to the )?left of\b", "left_of"),
+        (r"\b(?:to the )?right of\b", "right_of"),
+        (r"\bin front of\b", "in_front_of"),
+        (r"\bbehind\b", "behind"),
+        (r"\b(?:right next to|next to|near to|near|beside|besides|close to|by|adjacent to|alongside|nearby)\b", "near"),
+        (r"\b(?:on top of|on|onto|inside of|inside|in)\b(?=\s+(?:the|a|an)\s)", "near"),
+    ]
+    for pattern, relation in relations:
+        for m in re.finditer(pattern, text):
+            if relation == "near" and re.search(
+                r"\b(?:throw|toss|put|add|bring|chuck|drop|pop|set|mix|stick|place|lay|join|come|came|fill)s?\s*$",
+                text[: m.start()],
+            ):
+                continue  # "throw in a red bull can": a verb particle, not a place
+            rest = text[m.end():]
+            ref = _reference(vocab, rest, strict=(m.group(0).strip() in ("on", "in", "onto", "inside", "inside of", "on top of", "by")))
+            if ref is None:
+                continue
+            name, used = ref
+            new_text = text[: m.start()] + " " + rest[used:]
+            return {"relation": relation, "reference": name}, new_text
+    return None
+
+def _reference(vocab: Vocabulary, rest: str, strict: bool) -> tuple[str, int] | None:
+    m = re.match(r"\s*(?:the|a|an)?\s*", rest)
+    start = m.end() if m else 0
+    name = vocab.name_pattern.match(rest, start)
+    if name is not None:
+        return canonical_name(vocab, name.group(0)), name.end()
+    cat = re.match(rf"({'|'.join(re.escape(c) for c in vocab.categories)})(?:e?s)?\b", rest[start:])
+    if cat is not None:
+        return cat.group(1), start + cat.end()
+    if strict:
+        return None
+    words = re.match(r"((?:[a-z]+\s*){1,3})", rest[start:])
+    if words is None:
+        return None
+    phrase_words = []
+    for w in words.group(1).split():
+        if w in STOP_PREPOSITIONS or w in ("robot", "edge", "center", "centre", "middle", "camera", "corner", "side"):
+            break
+        phrase_words.append(w)
+    if not phrase_words or phrase_words[0] in FILLERS:
+        return None
+    phrase = " ".join(phrase_words)
+    return phrase, start + rest[start:].index(phrase) + len(phrase)
+
+def find_region(text: str) -> tuple[str, str] | None:
+    text = re.sub(r"\bright(?=\s+(?:in|at|on|next|by|beside|near|there|here|now|behind|against)\b)", " ", text)
+    horizontal = vertical = None
+    spans: list[tuple[int, int]] = []
+    for m in re.finditer(r"\b(left|right)(?:\s*(?:hand|-hand))?\b", text):
+        horizontal = m.group(1)
+        spans.append(m.span())
+    # From the viewer's side of the table: the far side is the back, the near side the front.
+    for m in re.finditer(
+        r"\b(away from the robot|far from the robot|near the robot|close to the robot|far side|far end|far edge|"
+        r"near side|near edge|front edge|back edge|rear edge|far|front|back|rear|top|bottom|in front|at the back)\b",
+        text,
+    ):
+        word = m.group(1)
+        vertical = "back" if word in (
+            "back", "rear", "bottom", "near the robot", "close to the robot", "at the back", "far side", "far end",
+            "far edge", "back edge", "rear edge", "far", "top",
+        ) else "front"
+        spans.append(m.span())
+    centre = re.search(r"\b(middle|center|centre|centered|centred|central)\b", text)
+    if horizontal is None and vertical is None and centre is None:
+        return None
+    if horizontal is None and vertical is None:
+        region = "center"
+        assert centre is not None
+        spans.append(centre.span())
+    elif horizontal and vertical:
+        region = f"{vertical}_{horizontal}"
+    else:
+        region = horizontal or vertical  # type: ignore[assignment]
+    for a, b in sorted(spans, reverse=True):
+        text = text[:a] + " " + text[b:]
+    text = re.sub(r"\b(?:on|at|in|to|towards?|toward)\s+the\s+(?:side|corner|edge|part)?\b", " ", text)
+    return region, text
+
+def unknown_phrase(text: str) -> str | None:
+    """An object phrase that names nothing in the catalog, where a phrase introduces one."""
+    words = re.findall(r"@n@|@\w+@|[a-z][a-z0-9]*|\d+(?:\.\d+)?", text)
+    run: list[str] = []
+    introduced = False
+    content = [w for w in words if not w.startswith("@") and w not in FILLERS and not re.fullmatch(r"\d+(?:\.\d+)?", w)]
+    end = len(words)
+    for i, w in enumerate(words):
+        if w.startswith("@"):
+            run = []
+            continue
+        if w in SCENE_NOUNS:
+            if run:
+                end = i
+                break
+            continue
+        if run and (w in STOP_PREPOSITIONS or w in ("that", "which", "who", "is", "are")):
+            end = i
+            break
+        if w in FILLERS or re.fullmatch(r"\d+(?:\.\d+)?", w):
+            if not run:
+                # introduced as a new object: "a/an/my X", "2 X", "add X" (not "the X", a reference)
+                if w in ("a", "an", "another", "add", "my", "our", "spawn") or re.fullmatch(r"\d+", w):
+                    introduced = True
+                continue
+            end = i
+            break
+        run.append(w)
+    if not run or len(run) > 3 or len("".join(run)) < 3:
+        return None
+    # the phrase must be all the clause names: nothing but fillers after it
+    if any(w not in FILLERS and not w.startswith("@") and w not in STOP_PREPOSITIONS for w in words[end:]):
+        return None
+    bare_item = len(content) == len(run) and len(words) <= len(run) + 1 and len(run) <= 2
+    if not introduced and not bare_item:
+        return None
+    return " ".join(run)
+
+
+def singular(phrase: str) -> str:
+    """The phrase with its last word in the singular ("soda cans" -> "soda can", "boxes" -> "box")."""
+    words = phrase.split()
+    w = words[-1]
+    if re.search(r"(?:ch|sh|ss|x|z)es$", w):
+        w = w[:-2]
+    elif w.endswith("ies") and len(w) > 4:
+        w = w[:-3] + "y"
+    elif w.endswith("s") and not w.endswith("ss"):
+        w = w[:-1]
+    return " ".join([*words[:-1], w])
+
+
+_GROUP = re.compile(
+    r"\b(?P<n>[2-9])\s+(?P<np>(?:[a-z]+\s+)?[a-z]+?)(?:es|s)\b(?P<sep>\s*(?:,|:|-|\()\s*)"
+    r"(?=(?:a|an|one|1|the)\s)"
+)
+_BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]+?(?:es|s)\b")
+_GENERIC = {"object", "item", "thing", "prop", "piece", "distractor", "random object", "other object"}
+
+
+def expand_groups(text: str) -> str:
+    """Plural groups spelled out item by item, as a person means them.
+
+    "2 cubes, a green one and a yellow one" -> "a green cube and a yellow cube";
+    "2 soda cans, a sprite and a 7up" -> "a sprite and a 7up" (the items are
+    the group); "the green one" after "2 blocks" -> "the green block". Counts
+    of generic nouns ("3 objects: ...") are totals and stay.
+    """
+    out = text
+    heads: list[tuple[int, str]] = []
+    # "those 2 blocks": the objects already named (by the task), not more of them
+    text = _BACK_GROUP.sub(lambda m: " " + m.group(0).split(None, 1)[1] + "@", text)
+    out = re.sub(r"\b[2-9]\s+(?:[a-z]+\s+)?[a-z]+@", " ", text)
+    for m in list(_GROUP.finditer(text))[::-1]:
+        np_ = m.group("np").strip()
+        if np_ in _GENERIC or np_.split()[-1] in {w.split()[-1] for w in _GENERIC}:
+            continue
+        out = out[: m.start()] + " " + out[m.end():]
+    for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", out):
+        np_ = singular(m.group(2).strip())
+        if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
+            heads.append((m.end(), np_))
+    if not heads:
+        # the group was removed: its noun is still the antecedent of "a green one"
+        for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))@?(?![a-z])", text):
+            np_ = singular(m.group(2).strip())
+            if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
+                heads.append((0, np_))
+
+    def head_before(pos: int) -> str | None:
+        found = [h for p, h in heads if p <= pos]
+        return found[-1] if found else (heads[0][1] if heads else None)
+
+    def one(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        return f"{m.group(1)} {m.group(2)} {head}"
+
+    return re.sub(
+        r"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:green|yellow|red|blue|pink|purple|orange|white|black|brown|"
+        r"small|large|big|little|light blue|dark|other))\s+(?:one|1)\b",
+        one, out,
+    )

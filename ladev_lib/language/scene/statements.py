@@ -1,0 +1,327 @@
+"""Where a scene description states its task, and what that task is.
+
+    found = find_task(text)
+    found.task       # {"type": "put_on", "source": "orange", "target": "plate"} or None
+    found.rest       # the text without the task statement(s), for the scene reader
+    found.statement  # the words the task was read from
+
+A description may state the task anywhere: a labelled line or clause
+("Task: ...", "TASK ...", "task(...)", "the goal is to ...", "instruction =
+..."), a sentence about the robot ("the robot should ...", "I want the arm to
+...", "let's see whether it can ...", "... — that's the robot's whole job"),
+or a bare command over definite or bare nouns ("put the peach on the red
+plate", "move fanta near green cup"). Placement commands that set the scene
+("put a carrot near the front", "place the bowl on the left side") are not
+tasks: their object is introduced with "a"/"an"/a number, or their
+destination is a part of the table.
+
+A labelled or robot statement wins over a bare command; among statements of
+the same strength, the last one wins ("task: a — no, b"). Each statement is
+read with :func:`ladev_lib.language.frames.read_instruction`, so the scene
+reader and the instruction reader share one grammar of the four tasks.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from ladev_lib.language.frames import Frame, NounPhrase, read_instruction
+from ladev_lib.language.tasks import TASKS
+
+_VERB = (
+    r"(?:pick(?:s|ing)?\s+up|pick|grab|grasp|lift|take|put|place|set|move|bring|stack|drop|insert|push|slide|"
+    r"carry|lay|rest|get|pop|stick|deposit|transfer|relocate|nudge|shift|stand|position|load)"
+)
+_AGENT = r"(?:the\s+)?(?:robot|arm|agent|gripper|policy|system|manipulator|model|it|they|you|we)"
+_MODAL = (
+    r"(?:should|must|will|would|shall|can|could|may|might|needs?\s+to|has\s+to|have\s+to|is\s+to|are\s+to|"
+    r"is\s+supposed\s+to|is\s+expected\s+to|is\s+meant\s+to|is\s+going\s+to|ought\s+to|'ll|is\s+asked\s+to|"
+    r"gets?\s+to|tries\s+to|try\s+to|attempts?\s+to|is\s+able\s+to|manages?\s+to)"
+)
+LABEL = re.compile(
+    r"(?:^|(?<=[\s(\[{|;,.:•*-]))(?:the\s+)?(?:main\s+|actual\s+|robot(?:'s)?\s+|its\s+)?"
+    r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt)"
+    r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
+    r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+(?:will|should|would|shall|must)\s+be\s+(?:to\s+)?|"
+    r"\s+(?=" + _VERB + r"\b))",
+    re.IGNORECASE,
+)
+AGENT_MODAL = re.compile(
+    rf"\b{_AGENT}\s+(?:\w+\s+)?{_MODAL}\s+(?:now\s+|then\s+|first\s+|simply\s+|just\s+|only\s+|also\s+)?(?={_VERB}\b)",
+    re.IGNORECASE,
+)
+AGENT_DOES = re.compile(
+    r"\b(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator)\s+(?:then\s+|just\s+|simply\s+)?"
+    r"(?=(?:picks\s+up|picks|grabs|grasps|lifts|takes|puts|places|sets|moves|brings|stacks|drops|inserts|pushes|"
+    r"slides|carries|lays|rests|gets|transfers|picking|grabbing|grasping|lifting|taking|putting|placing|setting|"
+    r"moving|bringing|stacking|dropping|inserting|pushing|sliding|carrying|laying|resting|getting|transferring)\b)",
+    re.IGNORECASE,
+)
+WANT_TO = re.compile(
+    rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
+    rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)"
+    rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)",
+    re.IGNORECASE,
+)
+BACK_LABEL = re.compile(
+    r"^\s*(?:that|this|which)(?:'s|\s+is|\s+will\s+be)\s+(?:the\s+)?(?:robot'?s?\s+|arm'?s?\s+|its\s+)?"
+    r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)",
+    re.IGNORECASE,
+)
+IMPERATIVE = re.compile(
+    rf"^\s*(?:(?:please|now|then|and|just|finally|simply|so|also|next)\s*,?\s+)*(?={_VERB}\b)", re.IGNORECASE
+)
+_INDEFINITE = re.compile(
+    r"^\s*(?:up\s+)?(?:a|an|one|two|three|four|five|six|some|several|\d+|another|any|random)\b", re.IGNORECASE
+)
+_PLACE_WORDS = frozenset(
+    {"left", "right", "front", "back", "center", "centre", "middle", "side", "edge", "corner", "table",
+     "tabletop", "table top", "surface", "scene", "somewhere", "anywhere", "spot", "area", "rear", "far side",
+     "near side", "workspace", "top", "bottom", "place", "position"}
+)
+_SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—")
+
+
+_CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
+_NEW_CLAUSE = re.compile(r",?\s*(?:and\s+|but\s+|while\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE)
+_RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class TaskStatement:
+    """One statement of the task, where it is in the text and how strongly it is marked."""
+
+    start: int
+    end: int
+    text: str
+    frame: Frame
+    strength: int
+    """2: labelled or about the robot; 1: a bare command."""
+    replacement: str = " . "
+    """What the statement leaves in the text (the object, when a relative clause about it follows)."""
+
+
+@dataclass
+class FoundTask:
+    task: dict[str, Any] | None
+    rest: str
+    statement: str | None = None
+    statements: list[TaskStatement] = field(default_factory=list)
+
+
+def _segments(text: str) -> list[tuple[int, int]]:
+    spans: list[tuple[int, int]] = []
+    pos = 0
+    for m in _SEGMENT.finditer(text):
+        if m.start() > pos:
+            spans.append((pos, m.start()))
+        pos = m.end()
+    if pos < len(text):
+        spans.append((pos, len(text)))
+    return spans
+
+
+def _is_place(phrase: NounPhrase | None) -> bool:
+    if phrase is None:
+        return False
+    words = phrase.text.lower().split()
+    return phrase.head.lower() in _PLACE_WORDS or (bool(words) and words[-1] in _PLACE_WORDS)
+
+
+def _cuts(candidate: str) -> list[tuple[str, int]]:
+    """The candidate, then shorter versions cut at clause boundaries (first boundary last), with their lengths."""
+    out = [(candidate, len(candidate))]
+    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|so that|so|then|with|because)\s+|\(|\)", candidate))):
+        head = candidate[: m.start()]
+        if head.strip() and head.strip() not in [c.strip() for c, _ in out]:
+            out.append((head, m.start()))
+    return out
+
+
+_ARROW = re.compile(
+    r"^\s*(?P<src>[^>]+?)\s*(?:->|→|=>)\s*(?P<tgt>[^(]+?)\s*\(\s*(?P<rel>put\s+in|put\s+on|in|into|on|onto|near|move\s+near)\s*\)",
+    re.IGNORECASE,
+)
+
+
+def _arrow(text: str) -> str:
+    """'marker -> mug (put in)' -> 'put marker in mug'."""
+    m = _ARROW.match(text)
+    if m is None:
+        return text
+    rel = m.group("rel").lower().split()[-1]
+    rel = {"into": "in", "onto": "on"}.get(rel, rel)
+    verb = "move" if rel == "near" else "put"
+    return f"{verb} {m.group('src')} {rel} {m.group('tgt')}"
+
+
+_ING = {"grabb": "grab", "putt": "put", "sett": "set", "dropp": "drop", "gett": "get", "tak": "take",
+        "plac": "place", "mov": "move", "slid": "slide"}
+
+
+def _normalise(candidate: str) -> str:
+    """A statement as an instruction: 'one of the carrots', arrows, '-ing' and third-person verbs undone."""
+    # "one of the carrots" -> "the carrot"
+    candidate = re.sub(
+        r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+((?:\w+\s+){0,2}?\w+?)(?:e?s)\b"
+        r"(?=\s+(?:near|on|onto|in|into|inside|next|to|by|beside|close|up)\b|\s*$)",
+        r"the \1", candidate, flags=re.IGNORECASE,
+    )
+    candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
+    candidate = _arrow(candidate)
+    candidate = re.sub(
+        r"^\s*(pick|grabb|grasp|lift|tak|putt|plac|sett|mov|bring|stack|dropp|insert|push|slid|carry|lay|rest|gett)ing\b",
+        lambda m: _ING.get(m.group(1).lower(), m.group(1)), candidate, flags=re.IGNORECASE,
+    )
+    candidate = re.sub(
+        r"^\s*(\w+?)(?<!s)s\b",
+        lambda m: m.group(1) if re.fullmatch(_VERB, m.group(1), re.IGNORECASE) else m.group(0), candidate,
+    )
+    candidate = re.sub(r"^\s*picks\s+up\b", "pick up", candidate, flags=re.IGNORECASE)
+    return candidate.strip().strip(")(\"'`*").strip()
+
+
+def _read_one(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+    text = _normalise(candidate)
+    if not text:
+        return None
+    frame = reader(text)
+    if frame.task in TASKS and frame.object is not None and frame.ok:
+        if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
+            return None
+        return frame
+    return None
+
+
+def _read_span(candidate: str, reader: Callable[[str], Frame]) -> tuple[Frame, int] | None:
+    """The frame a statement gives, and how much of the candidate it used (None: no task in it)."""
+    cuts = _cuts(candidate)
+    for k, (raw, used) in enumerate(cuts):
+        frame = _read_one(raw, reader)
+        if frame is None:
+            continue
+        # the shortest cut that reads the same: what follows it is another clause about the scene
+        for shorter, length in cuts[k + 1:]:
+            again = _read_one(shorter, reader)
+            if again is not None and _same_frame(again, frame):
+                used = length
+        return frame, used
+    return None
+
+
+def _same_frame(a: Frame, b: Frame) -> bool:
+    def key(f: Frame) -> tuple[str | None, str | None, str | None]:
+        return (f.task, f.object.text if f.object else None, f.destination.text if f.destination else None)
+
+    return key(a) == key(b)
+
+
+def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
+    found = _read_span(candidate, reader)
+    return found[0] if found is not None else None
+
+
+def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement]:
+    found: list[TaskStatement] = []
+    spans = _segments(text)
+    for i, (s, e) in enumerate(spans):
+        seg = text[s:e]
+        marked = None
+        for pattern in (LABEL, AGENT_MODAL, WANT_TO, AGENT_DOES):
+            m = pattern.search(seg)
+            if m is not None and (marked is None or m.end() < marked):
+                marked = m.end()
+        if marked is not None:
+            span = _read_span(seg[marked:], reader)
+            frame = span[0] if span is not None else None
+            if frame is not None and span is not None:
+                label = LABEL.search(seg)
+                if label is not None:
+                    start = s + label.start()
+                else:
+                    # from the clause the statement starts in ("A and B at the back, then have the robot ...")
+                    bounds = [m.end() for m in _CLAUSE_END.finditer(seg[:marked])]
+                    first = min((m.start() for p in (AGENT_MODAL, WANT_TO, AGENT_DOES) if (m := p.search(seg))), default=0)
+                    before = [b for b in bounds if b <= first]
+                    start = s + (before[-1] if before else 0)
+                end, keep = e, " . "
+                if span[1] < len(seg) - marked and _NEW_CLAUSE.match(seg, marked + span[1]):
+                    end = s + marked + span[1]  # "..., and there is a green cube at the front" stays
+                rel = _RELATIVE.search(seg, marked)
+                if rel is not None and frame.object is not None:
+                    end, keep = s + rel.start(), f" . the {frame.object.text} "
+                found.append(TaskStatement(start, end, seg[marked:].strip(), frame, 2, keep))
+                continue
+            if LABEL.search(seg) and seg[marked:].strip():
+                # a labelled task that is none of the four forms is still the task statement
+                found.append(TaskStatement(s, e, seg[marked:].strip(), reader(seg[marked:].strip()), 0))
+                continue
+        m = IMPERATIVE.match(seg)
+        if m is None:
+            continue
+        after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
+        frame = _read(seg[m.end():], reader)
+        if frame is None:
+            continue
+        if _INDEFINITE.match(after_verb) and (
+            frame.object is None or re.search(rf"\b{re.escape(frame.object.head)}", text[:s], re.IGNORECASE) is None
+        ):
+            continue  # "put a carrot near the plate" sets the scene; "two apples ... put an apple in" is the task
+        back = i + 1 < len(spans) and BACK_LABEL.match(text[spans[i + 1][0]:spans[i + 1][1]]) is not None
+        found.append(TaskStatement(s, e, seg[m.end():].strip(), frame, 2 if back else 1))
+        if back:
+            ns, ne = spans[i + 1]
+            found.append(TaskStatement(ns, ne, "", frame, -1))  # the tag itself, removed with the statement
+    return found
+
+
+def _mention(phrase: NounPhrase | None, names: Mapping[str, str]) -> str | None:
+    """The catalog name a phrase grounds to when its head noun is in that name; else the phrase as written."""
+    if phrase is None:
+        return None
+    if phrase.object_id is not None and phrase.object_id in names:
+        name = names[phrase.object_id]
+        if phrase.head.lower() in name.split():
+            return name
+    return phrase.text
+
+
+def find_task(
+    text: str,
+    names: Mapping[str, str] | None = None,
+    reader: Callable[[str], Frame] | None = None,
+) -> FoundTask:
+    """The task a description states (or None), and the description without its task statements.
+
+    ``names`` maps catalog ids to the names the scene reader knows them by (the
+    prompt's object list), so that the task's objects are the described ones.
+    """
+    read = reader or read_instruction
+    # "put the marble - not the die - on the box", "(not the carrot)": asides that name what is not meant
+    text = re.sub(r"\s[—–-]+\s*not\s+(?:the|a|an)\s+[^—–\n.-]+?\s*[—–-]+\s", " ", text, flags=re.IGNORECASE)
+    text = re.sub(r"\(\s*not\s+(?:the|a|an)\s+[^)]*\)", " ", text, flags=re.IGNORECASE)
+    statements = _statements(text, read)
+    strong = [s for s in statements if s.strength == 2]
+    weak = [s for s in statements if s.strength == 1]
+    unreadable = [s for s in statements if s.strength == 0]
+    chosen = strong[-1] if strong else (weak[-1] if weak else None)
+    removed = [s for s in statements if s.strength in (2, 0, -1)] + ([chosen] if chosen is not None else [])
+    rest = text
+    spans = {(s.start, s.end): s.replacement for s in removed}
+    for (a, b), keep in sorted(spans.items(), reverse=True):
+        rest = rest[:a] + keep + rest[b:]
+    if chosen is None:
+        if unreadable:
+            return FoundTask(None, rest, unreadable[-1].text, statements)
+        return FoundTask(None, rest, None, statements)
+    names = names or {}
+    frame = chosen.frame
+    task = {
+        "type": frame.task,
+        "source": _mention(frame.object, names),
+        "target": _mention(frame.destination, names) if frame.task != "pick_up" else None,
+    }
+    return FoundTask(task, rest, chosen.text, statements)
