@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ladev_lib.arrays import Array
+
 DEFAULT_MODEL = "all-MiniLM-L6-v2"
 
 
@@ -40,7 +42,7 @@ class Embedder:
         self.batch_size = batch_size
         self._model = SentenceTransformer(model_path, device=device)
 
-    def encode(self, texts: Sequence[str]) -> np.ndarray:
+    def encode(self, texts: Sequence[str]) -> Array:
         """(len(texts), dim) float32, unit length rows."""
         if not texts:
             return np.zeros((0, self.dimension), dtype=np.float32)
@@ -61,7 +63,7 @@ class Embedder:
         dim = getter()
         return int(dim) if dim is not None else 0
 
-    def similarity(self, a: Sequence[str], b: Sequence[str]) -> np.ndarray:
+    def similarity(self, a: Sequence[str], b: Sequence[str]) -> Array:
         """Row-wise cosine similarity of a[i] and b[i]."""
         if len(a) != len(b):
             raise ValueError(f"similarity needs equal lengths, got {len(a)} and {len(b)}")

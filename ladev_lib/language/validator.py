@@ -29,6 +29,7 @@ from typing import Protocol
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.catalog.catalog import normalize_name
 from ladev_lib.language.frames import Frame, NounPhrase
@@ -46,7 +47,7 @@ whole catalog is about 0.51."""
 class TextEmbedder(Protocol):
     """What the validator needs from an embedder (``ladev_lib.language.embeddings.Embedder``)."""
 
-    def encode(self, texts: Sequence[str]) -> np.ndarray: ...
+    def encode(self, texts: Sequence[str]) -> Array: ...
 
 
 class StructureReader(Protocol):
@@ -242,9 +243,9 @@ class ParaphraseValidator:
         self.precision = precision
         """bf16: embed under CPU autocast to bfloat16 (about 1.6x faster on CPUs with native
         bf16; MiniLM cosine similarities move by 0.002 at most on the labelled pairs)."""
-        self._vectors: dict[str, np.ndarray] = {}
+        self._vectors: dict[str, Array] = {}
 
-    def embed(self, texts: Sequence[str]) -> dict[str, np.ndarray]:
+    def embed(self, texts: Sequence[str]) -> dict[str, Array]:
         """Unit vectors for ``texts``: new distinct texts in one batch, the rest from the cache."""
         todo = [t for t in dict.fromkeys(texts) if t not in self._vectors]
         if todo:
@@ -257,12 +258,12 @@ class ParaphraseValidator:
             self._vectors.update(zip(todo, vectors, strict=True))
         return {t: self._vectors[t] for t in texts}
 
-    def similarities(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+    def similarities(self, pairs: Sequence[tuple[str, str]]) -> Array:
         """Cosine similarity of each (original, candidate) as written."""
         vectors = self.embed([t for pair in pairs for t in pair])
         return np.array([float(vectors[o] @ vectors[c]) for o, c in pairs], dtype=np.float32)
 
-    def canonical_similarities(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+    def canonical_similarities(self, pairs: Sequence[tuple[str, str]]) -> Array:
         """Cosine similarity of each pair with object names replaced by display names."""
         return self.similarities(
             [(self.parser.canonical_text(o), self.parser.canonical_text(c)) for o, c in pairs]

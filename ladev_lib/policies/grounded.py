@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, CatalogObject, load_catalog
 from ladev_lib.language.embeddings import DEFAULT_MODEL, Embedder, load_embedder
 from ladev_lib.language.frames import Frame
@@ -89,9 +90,9 @@ class TaskRetriever:
 
     def __init__(self, embedder: Embedder) -> None:
         self.embedder = embedder
-        self._cache: dict[str, np.ndarray] = {}
+        self._cache: dict[str, Array] = {}
 
-    def _vectors(self, texts: Sequence[str]) -> np.ndarray:
+    def _vectors(self, texts: Sequence[str]) -> Array:
         missing = sorted({t for t in texts if t not in self._cache})
         if missing:
             for text, vec in zip(missing, self.embedder.encode(missing), strict=True):

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.catalog import CatalogObject
 
 
@@ -25,14 +26,14 @@ class Footprint:
     half_x: float
     half_y: float
 
-    def corners(self) -> np.ndarray:
+    def corners(self) -> Array:
         c, s = math.cos(math.radians(self.yaw_deg)), math.sin(math.radians(self.yaw_deg))
         local = np.array([[1, 1], [1, -1], [-1, -1], [-1, 1]], dtype=float) * [self.half_x, self.half_y]
         rot = np.array([[c, -s], [s, c]])
-        out: np.ndarray = local @ rot.T + [self.x, self.y]
+        out: Array = local @ rot.T + [self.x, self.y]
         return out
 
-    def axes(self) -> list[np.ndarray]:
+    def axes(self) -> list[Array]:
         c, s = math.cos(math.radians(self.yaw_deg)), math.sin(math.radians(self.yaw_deg))
         return [np.array([c, s]), np.array([-s, c])]
 

@@ -18,11 +18,12 @@ from typing import Literal
 
 import numpy as np
 
+from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, CatalogObject
 from ladev_lib.catalog.catalog import normalize_name
 
 MatchKind = Literal["exact", "contains", "category", "embedding", "unavailable"]
-EmbedFn = Callable[[Sequence[str]], np.ndarray]
+EmbedFn = Callable[[Sequence[str]], Array]
 """Texts -> unit-length embeddings, one row per text."""
 
 _ARTICLES = re.compile(r"^(?:the|a|an|one|some|any)\s+")
@@ -99,7 +100,7 @@ class ObjectResolver:
             key=lambda item: -len(item[0]),
         )
         self._categories = {o.category for o in catalog}
-        self._name_vectors: np.ndarray | None = None
+        self._name_vectors: Array | None = None
 
     # -- the lookup chain ----------------------------------------------------
     def resolve(self, mention: str) -> Resolution:
@@ -157,7 +158,7 @@ class ObjectResolver:
             self._embed = load_embedder(self._embedding_model).encode
         return self._embed
 
-    def _vectors(self) -> np.ndarray | None:
+    def _vectors(self) -> Array | None:
         if self.threshold > 1.0:  # embedding matching switched off
             return None
         if self._name_vectors is None:
