@@ -138,10 +138,13 @@ class Grounder:
             return Grounding(phrase, fits[0], "head")
         if len(fits) > 1:
             return self._ambiguous(phrase, fits)
-        # 3. embedding similarity with a margin
-        if self.embedder is not None:
+        # 3. embedding similarity with a margin, over the objects the phrase may name: a
+        # phrase the catalog reads as one object ("banana") never names a different
+        # catalog object ("apple"), however close their embeddings are
+        pool = [o for o in scene if not _other_catalog_object(phrase, o)]
+        if self.embedder is not None and pool:
             scored = sorted(
-                ((self._similarity(phrase.text, o), o.key) for o in scene), reverse=True
+                ((self._similarity(phrase.text, o), o.key) for o in pool), reverse=True
             )
             best, key = scored[0]
             second = scored[1][0] if len(scored) > 1 else -1.0
@@ -150,7 +153,8 @@ class Grounder:
                     return Grounding(phrase, key, "embedding", reason=None)
                 close = [k for s, k in scored if best - s < self.margin]
                 return self._ambiguous(phrase, close)
-        return Grounding(phrase, None, "absent", reason=f"'{phrase.text}' is not in the scene")
+        named = f" ({phrase.object_id})" if phrase.object_id else ""
+        return Grounding(phrase, None, "absent", reason=f"'{phrase.text}'{named} is not in the scene")
 
     def _ambiguous(self, phrase: NounPhrase, keys: Sequence[str]) -> Grounding:
         keys = tuple(dict.fromkeys(keys))
@@ -279,6 +283,11 @@ class Grounder:
 
 _COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
 _COLOUR_ALIASES = {"violet": "purple", "gray": "grey"}
+
+
+def _other_catalog_object(phrase: NounPhrase, obj: SceneObject) -> bool:
+    """The phrase is a catalog name and the scene object is a different catalog object."""
+    return phrase.object_id is not None and obj.catalog_id is not None and obj.catalog_id != phrase.object_id
 
 
 def _with_places(q: Qualifier) -> Qualifier:

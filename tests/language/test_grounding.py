@@ -43,6 +43,15 @@ def test_a_phrase_not_in_the_scene_is_absent_not_guessed(grounder):
     assert g.object_id is None and g.how == "absent"
 
 
+def test_a_catalog_object_never_grounds_on_a_different_catalog_object(grounder):
+    """Embeddings put 'banana' near 'apple'; the catalog knows they are different objects."""
+    fruit = grounder.scene(["apple", "eggplant"])
+    g = grounder.ground(np_("banana", "011_banana"), fruit)
+    assert g.object_id is None and g.how == "absent" and "011_banana" in (g.reason or "")
+    # a phrase the catalog does not read as one object still grounds by embedding
+    assert grounder.ground(np_("purple vegetable"), fruit).object_id == "eggplant"
+
+
 def test_free_phrases_compare_by_head_and_modifiers(grounder):
     same, _, _, _ = grounder.compare(np_("wine bottle"), np_("wine bottle"))
     assert same

@@ -31,7 +31,9 @@ def test_policy_options_compose_with_their_kwargs(repo_root):
     assert {label: p.name for label, p in policies.items()} == {
         "oracle": "oracle", "grounded": "grounded", "random": "random", "noop": "noop",
     }
-    assert policies["grounded"].kwargs == {"embedding_model": "all-MiniLM-L6-v2", "max_attempts": 3}
+    assert policies["grounded"].kwargs == {
+        "embedding_model": "all-MiniLM-L6-v2", "max_attempts": 3, "mode": "reader",
+    }
     assert policies["random"].kwargs == {"control_mode": "pd_ee_delta_pose"}
 
 

@@ -39,9 +39,9 @@ def pick_up_scene(scene_id: str, source: str, other: str) -> SceneSpec:
 SHORT = {"name": "panda", "max_episode_steps": {"pick_up": 30}}
 
 
-def worker(tmp_path: Path, policy: str, robot_config: dict | None = None) -> EpisodeWorker:
+def worker(tmp_path: Path, policy: str, robot_config: dict | None = None, **kwargs) -> EpisodeWorker:
     return EpisodeWorker(
-        WorkerSpec(policy, {}, {"image_size": [128, 128]}, robot_config or {"name": "panda"},
+        WorkerSpec(policy, kwargs, {"image_size": [128, 128]}, robot_config or {"name": "panda"},
                    MediaOptions(str(tmp_path), "media", frames=True))
     )
 
@@ -50,8 +50,22 @@ def run(w: EpisodeWorker, spec: SceneSpec, instruction: str):
     return w.run(EpisodeJob(spec.scene_id or "e", spec.to_json(), instruction, spec.seed))
 
 
-def test_grounded_succeeds_when_it_understands_and_fails_when_fooled(tmp_path):
+def test_grounded_reader_acts_on_what_it_reads_and_holds_still_otherwise(tmp_path):
     w = worker(tmp_path, "grounded")
+    try:
+        right = run(w, pick_up_scene("eggplant-apple", "eggplant", "apple"), "could you lift the eggplant up?")
+        assert w.policy.reading.task.source == "eggplant", w.policy.explain()
+        lost = run(w, pick_up_scene("eggplant-apple-2", "eggplant", "apple"), "pick up the banana")
+        assert w.policy.reading.task is None and "banana" in w.policy.explain(), w.policy.explain()
+    finally:
+        w.close()
+    assert right.status == "success", right
+    assert lost.status == "failure" and lost.steps <= 2, lost
+    assert not lost.predicates["is_grasped"]
+
+
+def test_grounded_retrieval_succeeds_when_it_understands_and_fails_when_fooled(tmp_path):
+    w = worker(tmp_path, "grounded", mode="retrieval")
     try:
         right = run(w, pick_up_scene("eggplant-apple", "eggplant", "apple"), "pick up the purple vegetable")
         assert w.policy.choice.chosen.source == "eggplant"
