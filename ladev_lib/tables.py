@@ -25,14 +25,15 @@ import pyarrow.parquet as pq
 from pydantic import BaseModel, ConfigDict, Field
 
 from ladev_lib.errors import LadevError
-
-Factor = Literal["num_objects", "instruction", "object_set", "environment"]
-ObjectSetName = Literal["simpler", "ycb"]
-Environment = Literal["default", "lighting", "camera"]
-InstructionKind = Literal["basic", "paraphrase", "control"]
-ControlKind = Literal["empty", "unrelated", "other_object"]
-EpisodeStatus = Literal["success", "failure", "error", "invalid_scene"]
-
+from ladev_lib.vocabulary import (
+    ControlKind,
+    Environment,
+    EpisodeStatus,
+    Factor,
+    InstructionKind,
+    ObjectSetName,
+    Robot,
+)
 
 SCHEMA_KEY = b"ladev_schema_version"
 """Parquet footer key of a table's schema version (``ladev_version`` before; still read)."""
@@ -70,7 +71,7 @@ class SceneDesignRow(TableRow):
     )
     object_set: ObjectSetName = Field(description="Object set the scene draws from.")
     environment: Environment = Field(description="default | lighting | camera")
-    robot: str = Field(description="Robot the scene is laid out for (the workspace is shared).")
+    robot: Robot = Field(description="Robot the scene is laid out for (the workspace is shared).")
     seed: int = Field(description="Seed derived from the study seed and the scene id.")
     description: str | None = Field(description="Natural-language scene description (null if generation failed).")
     base_instruction: str | None = Field(description="Basic instruction in the standard short form.")

@@ -4,8 +4,7 @@ from ladev_lib.catalog.catalog import (
     Catalog,
     CatalogObject,
     MeshRef,
-    ObjectSet,
     load_catalog,
 )
 
-__all__ = ["Catalog", "CatalogObject", "MeshRef", "ObjectSet", "load_catalog"]
+__all__ = ["Catalog", "CatalogObject", "MeshRef", "load_catalog"]

@@ -16,7 +16,8 @@ from typing import Literal
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-ObjectSet = Literal["simpler", "ycb"]
+from ladev_lib.vocabulary import ObjectSetName
+
 Shape = Literal["box", "cylinder", "sphere", "capsule", "plate", "flat", "container"]
 
 DEFAULT_CATALOG_PATH = Path(__file__).with_name("objects.yaml")
@@ -39,7 +40,7 @@ class MeshRef(BaseModel):
 
     model_config = ConfigDict(frozen=True, extra="forbid")
 
-    source: ObjectSet
+    source: ObjectSetName
     model: str
     upright_euler_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
@@ -53,7 +54,7 @@ class CatalogObject(BaseModel):
     model_config = ConfigDict(frozen=True, extra="forbid")
 
     id: str
-    set: ObjectSet
+    set: ObjectSetName
     display_name: str
     synonyms: tuple[str, ...] = ()
     category: str
@@ -136,6 +137,8 @@ class Catalog(BaseModel):
     def __len__(self) -> int:
         return len(self.objects)
 
+    # pydantic's BaseModel.__iter__ yields (field, value) pairs; a catalog iterates its objects,
+    # which is what every caller means by `for obj in catalog`. The override is deliberate.
     def __iter__(self) -> Iterator[CatalogObject]:  # type: ignore[override]
         return iter(self.objects)
 
@@ -161,7 +164,7 @@ class Catalog(BaseModel):
     def select(
         self,
         *,
-        sets: Iterable[ObjectSet] | None = None,
+        sets: Iterable[ObjectSetName] | None = None,
         graspable: bool | None = None,
         support: bool | None = None,
         container: bool | None = None,

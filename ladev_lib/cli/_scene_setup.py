@@ -10,6 +10,7 @@ from ladev_lib.config import compose_config
 from ladev_lib.llm.config import LLMConfig
 from ladev_lib.pipeline.compile import SceneCompilerSetup, scene_compiler
 from ladev_lib.scenes.text_to_scene import SceneCompiler
+from ladev_lib.vocabulary import Robot
 
 
 @dataclass
@@ -26,7 +27,7 @@ class SceneTools:
         return self.setup.llm
 
     @property
-    def robot(self) -> str:
+    def robot(self) -> Robot:
         return self.setup.robot
 
 

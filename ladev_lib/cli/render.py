@@ -7,6 +7,7 @@ from pathlib import Path
 import click
 
 from ladev_lib.cli._spec_file import read_spec_file
+from ladev_lib.vocabulary import ROBOTS
 
 
 def _parse_size(text: str | None) -> tuple[int, int] | None:
@@ -24,7 +25,7 @@ def _parse_size(text: str | None) -> tuple[int, int] | None:
 @click.argument("spec_path", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=Path("scene.png"),
               show_default=True, help="PNG to write (policy | overview).")
-@click.option("--robot", type=click.Choice(["panda", "widowx", "google_robot"]), default=None,
+@click.option("--robot", type=click.Choice(ROBOTS), default=None,
               help="Render with this robot instead of the spec's.")
 @click.option("--size", default=None, help="Policy image size, WIDTH or WIDTHxHEIGHT (default: sim config).")
 @click.option("--separate", is_flag=True, help="Write NAME_policy.png and NAME_overview.png instead.")

@@ -20,9 +20,7 @@ import click
 
 from ladev_lib.scenes.spec import SceneSpec
 from ladev_lib.scenes.text_to_scene import CompiledScene, SceneText
-
-TASK_CHOICES = ["pick_up", "move_near", "put_on", "put_in"]
-
+from ladev_lib.vocabulary import OBJECT_SETS, TASKS
 
 Renderer = Callable[[SceneSpec, Path, dict[str, Any]], list[Path]]
 
@@ -81,10 +79,10 @@ def _print_text(result: CompiledScene, description: str, backend: str) -> None:
 @click.argument("description")
 @click.argument("overrides", nargs=-1)
 @click.option("-i", "--instruction", default=None, help="Basic instruction, e.g. 'pick up the coke can'.")
-@click.option("-t", "--task", type=click.Choice(TASK_CHOICES), default=None,
+@click.option("-t", "--task", type=click.Choice(TASKS), default=None,
               help="Task type when there is no instruction (default pick_up).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed for random objects and positions.")
-@click.option("--object-set", type=click.Choice(["simpler", "ycb"]), default=None,
+@click.option("--object-set", type=click.Choice(OBJECT_SETS), default=None,
               help="Set random objects come from (default: compile.default_object_set).")
 @click.option("--render", "render_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Render the scene to this PNG (needs ladev_lib.sim).")
@@ -117,7 +115,7 @@ def command(
         task=task,
         seed=seed,
         object_set=object_set,
-        robot=tools.robot,  # type: ignore[arg-type]
+        robot=tools.robot,
     )
     result = tools.compiler.compile(item)
     backend = f"{tools.llm.backend}:{tools.compiler.client.backend.model}"

@@ -10,9 +10,9 @@ import click
 
 from ladev_lib.config import load_params
 from ladev_lib.errors import ConfigError
+from ladev_lib.vocabulary import TASKS
 
-# The paper's task order (kept here so `ladev summary` does not import polars).
-TASK_ORDER = ("pick_up", "move_near", "put_on", "put_in")
+TASK_ORDER: tuple[str, ...] = TASKS  # the paper's order; vocabulary imports nothing heavy
 
 
 def _paths(params_file: Path) -> tuple[str | None, Path, Path]:

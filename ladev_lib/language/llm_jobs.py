@@ -26,6 +26,7 @@ from ladev_lib.llm.base import LLMRequest
 from ladev_lib.llm.client import LLMClient
 from ladev_lib.llm.config import LLMConfig
 from ladev_lib.llm.prompts import PromptTemplate, build_request
+from ladev_lib.vocabulary import as_task
 
 PARAPHRASE_JOB = "paraphrase"
 PARSE_JOB = "parse_instruction"
@@ -125,7 +126,7 @@ def offline_parse_job(request: LLMRequest) -> str:
     if not parse.ok:
         return json.dumps({"task": None, "source": None, "target": None, "problem": parse.reason})
     return ParseAnswer(
-        task=parse.task,  # type: ignore[arg-type]
+        task=as_task(parse.task or ""),
         source=index.display_name(parse.source) if parse.source else None,
         target=index.display_name(parse.target) if parse.target else None,
     ).model_dump_json()

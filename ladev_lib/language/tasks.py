@@ -9,10 +9,9 @@ it from here. A reading that asks for something else is ``NOT_A_TASK``.
 
 from __future__ import annotations
 
-from typing import Literal
+from ladev_lib.vocabulary import TASKS as TASKS
+from ladev_lib.vocabulary import TaskType as TaskType
 
-TaskType = Literal["pick_up", "move_near", "put_on", "put_in"]
-TASKS: tuple[TaskType, ...] = ("pick_up", "move_near", "put_on", "put_in")
 NOT_A_TASK = "other"
 """The task of a reading that asks for an action outside the four ("open the drawer")."""
 

@@ -30,7 +30,7 @@ from ladev_lib.llm.config import LLMConfig, make_client
 from ladev_lib.llm.prompts import load_prompts
 from ladev_lib.pipeline import StageMessages
 from ladev_lib.scenes.compiler import CompileConfig
-from ladev_lib.scenes.spec import Robot, SceneBounds, TaskType
+from ladev_lib.scenes.spec import SceneBounds
 from ladev_lib.scenes.text_to_scene import (
     CompiledScene,
     SceneCompiler,
@@ -39,6 +39,7 @@ from ladev_lib.scenes.text_to_scene import (
 )
 from ladev_lib.seeding import derive_seed
 from ladev_lib.tables import CompiledSceneRow, SceneDesignRow, read_table, rows_of, write_table
+from ladev_lib.vocabulary import Robot, TaskType, as_robot
 
 T = TypeVar("T")
 
@@ -50,7 +51,7 @@ class SceneCompilerSetup:
     compiler: SceneCompiler
     llm: LLMConfig
     client: LLMClient
-    robot: str
+    robot: Robot
 
 
 def scene_compiler(cfg: dict[str, Any], cache_dir: Path | None) -> SceneCompilerSetup:
@@ -62,7 +63,7 @@ def scene_compiler(cfg: dict[str, Any], cache_dir: Path | None) -> SceneCompiler
     catalog = load_catalog(cfg.get("catalog"))
     client = make_client(llm, cache_dir)
     compiler = SceneCompiler(client, prompt, llm, catalog, bounds, compile_cfg)
-    robot = str((cfg.get("robot") or {}).get("name") or "panda")
+    robot = as_robot(str((cfg.get("robot") or {}).get("name") or "panda"))
     return SceneCompilerSetup(compiler, llm, client, robot)
 
 
@@ -181,7 +182,7 @@ def _line_id(number: int, text: str) -> str:
     return f"line-{number}"
 
 
-def compile_line(compiler: SceneCompiler, number: int, text: str, robot: str) -> CompiledScene:
+def compile_line(compiler: SceneCompiler, number: int, text: str, robot: Robot) -> CompiledScene:
     """One input line compiled; an unreadable line is a rejection with its reason."""
     parsed = parse_line(number, text)
     if isinstance(parsed, str):
@@ -193,7 +194,7 @@ def compile_line(compiler: SceneCompiler, number: int, text: str, robot: str) ->
         task=parsed.task,
         seed=parsed.seed if parsed.seed is not None else derive_seed(0, parsed.id),
         object_set=parsed.object_set,
-        robot=parsed.robot or robot,  # type: ignore[arg-type]
+        robot=parsed.robot or robot,
     )
     return compiler.compile(item)
 

@@ -21,6 +21,7 @@ from ladev_lib.pipeline import StageMessages
 from ladev_lib.study.design import StudyConfig, design_scenes, plan_batches
 from ladev_lib.study.generation import generate_descriptions
 from ladev_lib.tables import SceneDesignRow, write_table
+from ladev_lib.vocabulary import as_robot
 
 
 @dataclass(frozen=True)
@@ -66,7 +67,7 @@ def run_generate(params: dict[str, Any], *, progress: bool = True) -> GenerateRe
     with tqdm(total=total, desc="generate", unit="scene", disable=not progress) as bar:
         result = generate_descriptions(
             study, client, prompt, llm, catalog,
-            robot=str(params["robot"]["name"]), catalog_path=catalog_path, on_batch=bar.update,
+            robot=as_robot(str(params["robot"]["name"])), catalog_path=catalog_path, on_batch=bar.update,
         )
     write_table(result.rows, paths["scenes"], SceneDesignRow)
 

@@ -13,8 +13,9 @@ import numpy as np
 
 from ladev_lib.arrays import Array
 from ladev_lib.policies.base import EpisodeContext, Observation, Policy, PolicyInfo, PolicyStep
+from ladev_lib.vocabulary import ROBOTS
 
-DEFAULT_ROBOTS: tuple[str, ...] = ("panda", "widowx", "google_robot")
+DEFAULT_ROBOTS: tuple[str, ...] = ROBOTS
 
 
 def _finite_bounds(ctx: EpisodeContext | None, action_dim: int | None) -> tuple[Array, Array]:

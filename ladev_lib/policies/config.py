@@ -6,7 +6,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from ladev_lib.scenes.spec import Robot, TaskType
+from ladev_lib.vocabulary import Robot, TaskType
 
 
 class PolicyConfig(BaseModel):

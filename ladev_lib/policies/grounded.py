@@ -44,15 +44,14 @@ from ladev_lib.policies.motion import ArmMotion
 from ladev_lib.policies.oracle import ORACLE_MAX_EPISODE_STEPS, OraclePolicy
 from ladev_lib.scenes.feasibility import task_feasibility
 from ladev_lib.scenes.spec import SceneBounds, SceneSpec, TaskSpec
-
-TASK_ORDER: tuple[str, ...] = TASKS
+from ladev_lib.vocabulary import TaskType
 
 
 @dataclass(frozen=True)
 class CandidateTask:
     """A task the scene affords, by object instance names, with its short-form text."""
 
-    task: str
+    task: TaskType
     source: str
     target: str | None
     text: str
@@ -70,7 +69,7 @@ class TaskChoice:
 def afforded_tasks(objects: Sequence[tuple[str, CatalogObject]]) -> list[CandidateTask]:
     """Every task the objects afford: (instance name, catalog entry) pairs in scene order."""
     out: list[CandidateTask] = []
-    for task in TASK_ORDER:
+    for task in TASKS:
         for s_name, s in objects:
             if not s.graspable:
                 continue
@@ -168,7 +167,7 @@ def spec_with_task(spec: SceneSpec, task: CandidateTask) -> SceneSpec:
         return "source" if name == task.source else "target" if name == task.target else "distractor"
 
     objects = tuple(o.model_copy(update={"role": role(o.name)}) for o in spec.objects)
-    chosen = TaskSpec(type=task.task, source=task.source, target=task.target)  # type: ignore[arg-type]
+    chosen = TaskSpec(type=task.task, source=task.source, target=task.target)
     return spec.model_copy(update={"task": chosen, "objects": objects})
 
 

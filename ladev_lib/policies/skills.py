@@ -21,7 +21,7 @@ grounded policy from language).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sapien
@@ -41,12 +41,11 @@ from ladev_lib.policies.placing import (
     place_on,
 )
 from ladev_lib.policies.planner import ArmPath
+from ladev_lib.vocabulary import TASKS, TaskType, narrow
 
 if TYPE_CHECKING:
     from ladev_lib.sim.view import SceneView
 
-TaskType = Literal["pick_up", "move_near", "put_on", "put_in"]
-TASK_TYPES: tuple[str, ...] = ("pick_up", "move_near", "put_on", "put_in")
 
 PRE_GRASP_HEIGHT_M = 0.08
 """Approach ends this far above the grasp, then the hand comes straight down."""
@@ -91,16 +90,15 @@ class TaskSkill(ArmMotion):
         region: tuple[tuple[float, float], tuple[float, float]] | None = None,
         max_attempts: int = 3,
     ) -> None:
-        if task_type not in TASK_TYPES:
-            raise ValueError(f"task_type must be one of {', '.join(TASK_TYPES)}, got {task_type!r}")
-        if task_type != "pick_up" and target is None:
-            raise ValueError(f"{task_type} needs a target object")
+        task = narrow(task_type, TASKS, "task_type")
+        if task != "pick_up" and target is None:
+            raise ValueError(f"{task} needs a target object")
         objects = view.object_names()
         for role, name in (("source", source), ("target", target)):
             if name is not None and name not in objects:
                 raise KeyError(f"{role} {name!r} is not in the scene (objects: {', '.join(objects)})")
         super().__init__(view)
-        self.task_type = task_type
+        self.task_type: TaskType = task
         self.source = source
         self.target = target
         self.max_attempts = max_attempts

@@ -45,8 +45,8 @@ def _series(frame: pl.DataFrame, policy: str, task: str, levels: Sequence[str]) 
     return rate, np.vstack([rate - low, high - rate]), np.isnan(rate)
 
 
-def _num(value: object) -> float:
-    return float("nan") if value is None else float(value)  # type: ignore[arg-type]
+def _num(value: float | None) -> float:
+    return float("nan") if value is None else float(value)
 
 
 def _legend(fig: Figure, handles: list[Artist], labels: list[str], confidence: float) -> None:

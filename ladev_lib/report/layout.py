@@ -14,8 +14,9 @@ from dataclasses import dataclass
 import polars as pl
 
 from ladev_lib.report.cells import AVERAGE_LEVEL
+from ladev_lib.vocabulary import TASKS
 
-TASK_ORDER = ("pick_up", "move_near", "put_on", "put_in")
+TASK_ORDER: tuple[str, ...] = TASKS
 TASK_LABELS = {"pick_up": "Pick Up", "move_near": "Move Near", "put_on": "Put On", "put_in": "Put In"}
 
 

@@ -134,7 +134,7 @@ def success_definitions(
             rows.append(
                 dict(
                     policy=policy, task=task, n_scenes=sub["scene_id"].n_unique(), n_episodes=n,
-                    trials=int(sub["trial"].cast(pl.Int64).max() or 0) + 1 if n else 0,  # type: ignore[arg-type]
+                    trials=sub["trial"].n_unique() if n else 0,
                     end_pct=100.0 * int(sub["end"].sum()) / n if n else None,
                     any_pct=100.0 * int(sub["any"].sum()) / n if n else None,
                     definition=definition,

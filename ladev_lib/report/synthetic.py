@@ -20,13 +20,13 @@ import polars as pl
 
 from ladev_lib.arrays import Array
 from ladev_lib.tables import EpisodeRow, polars_schema
+from ladev_lib.vocabulary import ENVIRONMENTS, OBJECT_SETS, TASKS
 
-TASKS = ("pick_up", "move_near", "put_on", "put_in")
 DESIGN: dict[str, tuple[str, ...]] = {
     "num_objects": ("1", "2", "3", "4", "5"),
     "instruction": ("basic", "paraphrase"),
-    "object_set": ("simpler", "ycb"),
-    "environment": ("default", "lighting", "camera"),
+    "object_set": OBJECT_SETS,
+    "environment": ENVIRONMENTS,
 }
 
 

@@ -24,9 +24,10 @@ import functools
 import platform
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Protocol
+from typing import Literal, Protocol, TypeVar
 
 import numpy as np
 
@@ -38,6 +39,9 @@ from ladev_lib.rollout.media import write_mp4, write_png
 from ladev_lib.rollout.simulator import EpisodeSim
 from ladev_lib.scenes import SceneSpec
 from ladev_lib.seeding import seed_episode
+from ladev_lib.vocabulary import EpisodeStatus
+
+_T = TypeVar("_T")
 
 PHASES: tuple[str, ...] = ("idle", "setup", "load", "policy", "sim", "media")
 
@@ -107,10 +111,26 @@ def check_action(action: object, shape: tuple[int, ...], step: int) -> tuple[Arr
     return arr, None
 
 
+class _Abort(Exception):
+    """Ends the episode early with ``status`` and ``reason`` (never leaves this module)."""
+
+    def __init__(self, status: EpisodeStatus, reason: str) -> None:
+        super().__init__(reason)
+        self.status = status
+        self.reason = reason
+
+
+_WHERE = {"sim": "simulator", "policy": "policy"}
+
+
 @dataclass
-class _Clock:
+class _Run:
+    """One episode's clock and step count, and the one guarded call every phase goes through."""
+
+    robot: str
     sim: float = 0.0
     policy: float = 0.0
+    steps: int = 0
     started: float = field(default_factory=time.perf_counter)
 
     def timing(self) -> dict[str, float | str]:
@@ -120,6 +140,27 @@ class _Clock:
             "total_seconds": round(time.perf_counter() - self.started, 4),
             "host": host_label(),
         }
+
+    def guarded(self, part: Literal["sim", "policy"], call: Callable[[], _T], *, config_stops: bool = False) -> _T:
+        """``call()`` timed under ``part``; any exception becomes this episode's error.
+
+        With ``config_stops`` a :class:`ConfigError` propagates instead: no episode
+        could run under that configuration, so the run stops with its message.
+        """
+        t = time.perf_counter()
+        try:
+            return call()
+        except ConfigError as exc:
+            if config_stops:
+                raise
+            raise _Abort("error", describe_exception(_WHERE[part], exc)) from exc
+        except Exception as exc:  # noqa: BLE001 - any failure inside is this episode's error row
+            raise _Abort("error", describe_exception(_WHERE[part], exc)) from exc
+        finally:
+            setattr(self, part, getattr(self, part) + time.perf_counter() - t)
+
+    def failed(self, status: EpisodeStatus, reason: str) -> EpisodeOutcome:
+        return EpisodeOutcome.failed(status, self.robot, reason, steps=self.steps, **self.timing())
 
 
 def run_episode(
@@ -133,54 +174,48 @@ def run_episode(
     limits: Limits | None = None,
 ) -> EpisodeOutcome:
     """Run one episode in ``sim`` (already built for the policy's robot and control mode)."""
-    beat = heartbeat or NoHeartbeat()
-    lim = limits or Limits()
-    clock = _Clock()
-    info = policy.info
     spec = SceneSpec.model_validate_json(job.spec_json)
-    robot = robot or choose_robot(spec.robot, info.robots)
+    run = _Run(robot or choose_robot(spec.robot, policy.info.robots))
+    try:
+        return _episode(sim, policy, job, spec, run, media, heartbeat or NoHeartbeat(), limits or Limits())
+    except _Abort as stop:
+        return run.failed(stop.status, stop.reason)
 
-    def failed(status: str, reason: str, steps: int = 0) -> EpisodeOutcome:
-        return EpisodeOutcome.failed(status, robot, reason, steps=steps, **clock.timing())  # type: ignore[arg-type]
+
+def _episode(
+    sim: EpisodeSim,
+    policy: Policy,
+    job: EpisodeJob,
+    spec: SceneSpec,
+    run: _Run,
+    media: MediaOptions | None,
+    beat: Heartbeat,
+    lim: Limits,
+) -> EpisodeOutcome:
+    info = policy.info
 
     # -- scene ---------------------------------------------------------------
     seed_everything(job.seed)  # before anything of the episode draws a random number
     beat.enter("load", 0, lim.setup_timeout_s)
-    t = time.perf_counter()
-    try:
+
+    def load() -> tuple[str | None, Array, Array, int]:
         sim.load(spec, job.seed)
-        invalid = sim.invalid_reason()
         low, high = sim.action_bounds()
-        max_steps = info.episode_steps_for(spec.task.type) or sim.max_steps(spec.task.type)
-    except ConfigError:
-        raise  # the configuration cannot work for any episode (e.g. a control mode the robot lacks)
-    except Exception as exc:  # noqa: BLE001 - any simulator failure is this episode's error row
-        clock.sim += time.perf_counter() - t
-        return failed("error", describe_exception("simulator", exc))
-    clock.sim += time.perf_counter() - t
+        steps = info.episode_steps_for(spec.task.type) or sim.max_steps(spec.task.type)
+        return sim.invalid_reason(), low, high, steps
+
+    invalid, low, high, max_steps = run.guarded("sim", load, config_stops=True)
     if invalid:
-        outcome = failed("invalid_scene", invalid)
-        if media is not None and media.frames:  # show the user what the check saw
-            try:
-                frame = sim.frame()
-            except Exception as exc:  # noqa: BLE001 - the verdict stands without its picture
-                return outcome.model_copy(update={"error": f"{invalid} (no frame: {exc})"})
-            write_png(Path(media.root) / f"{job.episode_id}_first.png", frame)
-            outcome = outcome.model_copy(
-                update={"first_frame_path": f"{media.prefix}/{job.episode_id}_first.png"}
-            )
-        return outcome
+        return _invalid(sim, job, run, media, invalid)
 
     # -- policy --------------------------------------------------------------
     beat.enter("policy", 0, lim.step_timeout_s)
-    t = time.perf_counter()
-    try:
-        policy.begin_episode(EpisodeContext(seed=job.seed, robot=robot, action_low=low, action_high=high))
+
+    def start() -> None:
+        policy.begin_episode(EpisodeContext(seed=job.seed, robot=run.robot, action_low=low, action_high=high))
         policy.reset(job.instruction)
-    except Exception as exc:  # noqa: BLE001 - a policy failure is this episode's error row
-        clock.policy += time.perf_counter() - t
-        return failed("error", describe_exception("policy", exc))
-    clock.policy += time.perf_counter() - t
+
+    run.guarded("policy", start)
 
     wants_image = info.image_size is not None
     record = media is not None and media.needs_camera
@@ -188,63 +223,38 @@ def run_episode(
     frames: list[Array] = []
     shape = tuple(low.shape)
     predicates: dict[str, bool] = {}
-    steps = 0
     first_success: int | None = None
     for step in range(max_steps):
         beat.enter("sim", step, lim.step_timeout_s)
-        t = time.perf_counter()
-        try:
-            obs = sim.observe(image=wants_image, privileged=info.privileged)
-            obs.step = step
-            if record and (keep_all or step == 0):
-                frames.append(obs.image if obs.image is not None else sim.frame())
-        except Exception as exc:  # noqa: BLE001
-            clock.sim += time.perf_counter() - t
-            return failed("error", describe_exception("simulator", exc), steps)
-        clock.sim += time.perf_counter() - t
+        obs = run.guarded("sim", lambda: sim.observe(image=wants_image, privileged=info.privileged))
+        obs.step = step
+        if record and (keep_all or step == 0):
+            frames.append(obs.image if obs.image is not None else run.guarded("sim", sim.frame))
 
         beat.enter("policy", step, lim.step_timeout_s)
-        t = time.perf_counter()
-        try:
-            out = policy.step(obs)
-        except Exception as exc:  # noqa: BLE001
-            clock.policy += time.perf_counter() - t
-            return failed("error", describe_exception("policy", exc), steps)
-        clock.policy += time.perf_counter() - t
+        out = run.guarded("policy", functools.partial(policy.step, obs))
         action, problem = check_action(out.action, shape, step)
         if problem or action is None:
-            return failed("error", problem or "action: missing", steps)
+            raise _Abort("error", problem or "action: missing")
 
         beat.enter("sim", step, lim.step_timeout_s)
-        t = time.perf_counter()
-        try:
-            predicates = sim.step(action)
-        except Exception as exc:  # noqa: BLE001
-            clock.sim += time.perf_counter() - t
-            return failed("error", describe_exception("simulator", exc), steps)
-        clock.sim += time.perf_counter() - t
-        steps = step + 1
+        predicates = run.guarded("sim", functools.partial(sim.step, action))
+        run.steps = step + 1
         if first_success is None and predicates.get("success", False):
-            first_success = steps
+            first_success = run.steps
             if job.stop_on_success:
                 break
         if out.terminate:
             break
 
-    t = time.perf_counter()
-    try:
-        if not predicates:  # zero steps: judge the initial state
-            predicates = sim.evaluate()
-        if record:
-            frames.append(sim.frame())
-    except Exception as exc:  # noqa: BLE001
-        clock.sim += time.perf_counter() - t
-        return failed("error", describe_exception("simulator", exc), steps)
-    clock.sim += time.perf_counter() - t
+    if not predicates:  # zero steps: judge the initial state
+        predicates = run.guarded("sim", sim.evaluate)
+    if record:
+        frames.append(run.guarded("sim", sim.frame))
 
     success = bool(predicates.get("success", False))
     if first_success is None and success:  # zero steps: the initial state already holds
-        first_success = steps
+        first_success = run.steps
     outcome = EpisodeOutcome.model_validate(
         {
             "status": "success" if success else "failure",
@@ -252,15 +262,28 @@ def run_episode(
             "success_any": first_success is not None,
             "first_success_step": first_success,
             "predicates": predicates,
-            "steps": steps,
-            "robot": robot,
-            **clock.timing(),
+            "steps": run.steps,
+            "robot": run.robot,
+            **run.timing(),
         }
     )
     if media is not None and frames:
-        beat.enter("media", steps, lim.setup_timeout_s)
+        beat.enter("media", run.steps, lim.setup_timeout_s)
         outcome = _save_media(outcome, job, media, frames)
     return outcome
+
+
+def _invalid(sim: EpisodeSim, job: EpisodeJob, run: _Run, media: MediaOptions | None, reason: str) -> EpisodeOutcome:
+    """An ``invalid_scene`` row, with a picture of what the check saw when frames are kept."""
+    outcome = run.failed("invalid_scene", reason)
+    if media is None or not media.frames:
+        return outcome
+    try:
+        frame = sim.frame()
+    except Exception as exc:  # noqa: BLE001 - the verdict stands without its picture
+        return outcome.model_copy(update={"error": f"{reason} (no frame: {exc})"})
+    write_png(Path(media.root) / f"{job.episode_id}_first.png", frame)
+    return outcome.model_copy(update={"first_frame_path": f"{media.prefix}/{job.episode_id}_first.png"})
 
 
 def _save_media(

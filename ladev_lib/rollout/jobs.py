@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from ladev_lib.rollout.config import VideoMode
-from ladev_lib.tables import EpisodeStatus
+from ladev_lib.vocabulary import EpisodeStatus
 
 if TYPE_CHECKING:
     from ladev_lib.policies.base import Policy

@@ -31,5 +31,7 @@ def write_mp4(path: Path, frames: Sequence[Array], fps: int) -> None:
         tmp, fps=fps, codec="libx264", pixelformat="yuv420p", macro_block_size=1
     ) as writer:
         for f in frames:
+            # imageio types get_writer's result as its plugin base class, which does not declare
+            # append_data; the ffmpeg writer it returns has it (imageio v2 API, pinned).
             writer.append_data(np.ascontiguousarray(f[:h2, :w2], dtype=np.uint8))  # type: ignore[attr-defined]
     tmp.replace(path)

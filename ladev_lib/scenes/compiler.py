@@ -40,14 +40,14 @@ from ladev_lib.scenes.operations import AddObject, Position, SceneOperations, Ta
 from ladev_lib.scenes.placement import PlacementError, PlacementRequest, place_objects
 from ladev_lib.scenes.resolve import ObjectResolver, Resolution
 from ladev_lib.scenes.sampling import sample_camera, sample_lighting, target_candidates
-from ladev_lib.scenes.spec import (
+from ladev_lib.scenes.spec import CameraOffset, Lighting, SceneBounds, SceneSpec, parse_scene_spec
+from ladev_lib.vocabulary import (
+    OBJECT_SETS,
     TASKS_WITH_TARGET,
-    CameraOffset,
-    Lighting,
+    ObjectSetName,
     Robot,
-    SceneBounds,
-    SceneSpec,
-    parse_scene_spec,
+    TaskType,
+    as_task,
 )
 
 
@@ -70,7 +70,7 @@ class CompileConfig(BaseModel):
     default_num_objects: tuple[int, int] = Field(
         default=(1, 4), description="Range of objects (source + distractors) when the text names none."
     )
-    default_object_set: Literal["simpler", "ycb"] = Field(
+    default_object_set: ObjectSetName = Field(
         default="simpler", description="Set random objects come from when neither text nor study says."
     )
     near_distance_m: float = Field(
@@ -314,7 +314,8 @@ class _Compilation:
 
     # -- random draws ------------------------------------------------------------
     def _pool(self) -> list[CatalogObject]:
-        return self.catalog.select(sets=[self.object_set])  # type: ignore[list-item]
+        # an unknown set name selects nothing, as it always has: the draw then reports the empty pool
+        return self.catalog.select(sets=[s for s in OBJECT_SETS if s == self.object_set])
 
     def _random_from(self, pool: list[CatalogObject]) -> CatalogObject:
         return pool[int(self.rng.integers(len(pool)))]
@@ -448,10 +449,7 @@ class _Compilation:
             if abs(r[k]) > max_r + 1e-9:
                 self.notes.append(f"camera {axis} {r[k]:+.1f} deg clamped to {math.copysign(max_r, r[k]):+.1f} deg")
                 r[k] = math.copysign(max_r, r[k])
-        return CameraOffset(
-            translation_m=tuple(round(float(v), 4) for v in t),  # type: ignore[arg-type]
-            rotation_deg=tuple(round(float(v), 2) for v in r),  # type: ignore[arg-type]
-        )
+        return CameraOffset.rounded(t, r)
 
 
 def compile_operations(
@@ -492,7 +490,7 @@ def _compile(
     ops, bounds = comp.ops, comp.bounds
     if ops.error:
         raise _Reject(f"the description could not be read as a scene: {ops.error}")
-    task = ops.task or (TaskOperation(type=default_task) if default_task else None)  # type: ignore[arg-type]
+    task = ops.task or (TaskOperation(type=_task_type(default_task)) if default_task else None)
     if task is None:
         raise _Reject("no task: give an instruction or a task type")
     comp.build_slots()
@@ -601,3 +599,11 @@ def design_mismatches(spec: SceneSpec, expected: DesignExpectation, catalog: Cat
         )
         out.append(f"environment level {expected.environment!r}, but the scene has {have}")
     return out
+
+
+def _task_type(name: str) -> TaskType:
+    """The study's or caller's task name, checked: an unknown one rejects the scene with the reason."""
+    try:
+        return as_task(name)
+    except ValueError as exc:
+        raise _Reject(str(exc)) from None

@@ -28,7 +28,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from ladev_lib.scenes.spec import TaskType
+from ladev_lib.vocabulary import ObjectSetName, TaskType
 
 OPERATIONS_VERSION: Literal[1] = 1
 
@@ -37,7 +37,6 @@ Region = Literal[
     "front_left", "front_right", "back_left", "back_right",
 ]
 Relation = Literal["near", "left_of", "right_of", "in_front_of", "behind"]
-ObjectSetName = Literal["simpler", "ycb"]
 
 
 class _Strict(BaseModel):

@@ -10,19 +10,19 @@ import math
 
 import numpy as np
 
-from ladev_lib.catalog import Catalog, CatalogObject, ObjectSet
+from ladev_lib.catalog import Catalog, CatalogObject
 from ladev_lib.scenes.feasibility import task_feasibility
 from ladev_lib.scenes.placement import PlacementError, PlacementRequest, place_objects
 from ladev_lib.scenes.spec import (
     CameraOffset,
     Lighting,
     ObjectPlacement,
-    Robot,
     SceneBounds,
     SceneSpec,
     TaskSpec,
     parse_scene_spec,
 )
+from ladev_lib.vocabulary import ObjectSetName, Robot, Role, as_task
 
 
 def target_candidates(task: str, source: CatalogObject, pool: list[CatalogObject]) -> list[CatalogObject]:
@@ -50,16 +50,13 @@ def sample_camera(environment: str, rng: np.random.Generator, bounds: SceneBound
     direction /= np.linalg.norm(direction)
     dist = rng.uniform(0.2, 1.0) * bounds.camera_max_translation_m
     angles = rng.uniform(-1.0, 1.0, size=3) * bounds.camera_max_rotation_deg
-    return CameraOffset(
-        translation_m=tuple(round(float(v), 4) for v in direction * dist),  # type: ignore[arg-type]
-        rotation_deg=tuple(round(float(v), 2) for v in angles),  # type: ignore[arg-type]
-    )
+    return CameraOffset.rounded(direction * dist, angles)
 
 
 def sample_scene(
     task: str,
     num_objects: int,
-    object_set: ObjectSet,
+    object_set: ObjectSetName,
     rng: np.random.Generator,
     catalog: Catalog,
     bounds: SceneBounds | None = None,
@@ -109,7 +106,7 @@ def sample_scene(
         except PlacementError as exc:
             last_error = str(exc)
             continue
-        roles = ["source", "target"] if needs_target else ["source"]
+        roles: list[Role] = ["source", "target"] if needs_target else ["source"]
         objects = [
             ObjectPlacement(
                 name=p.obj.id,
@@ -117,7 +114,7 @@ def sample_scene(
                 x=round(p.x, 4),
                 y=round(p.y, 4),
                 yaw_deg=round(math.remainder(p.yaw_deg, 360.0), 2),
-                role=roles[i] if i < len(roles) else "distractor",  # type: ignore[arg-type]
+                role=roles[i] if i < len(roles) else "distractor",
             )
             for i, p in enumerate(placed)
         ]
@@ -127,7 +124,7 @@ def sample_scene(
             objects=tuple(objects),
             lighting=sample_lighting(environment, rng, bounds),
             camera=sample_camera(environment, rng, bounds),
-            task=TaskSpec(type=task, source=source.id, target=chosen[1].id if needs_target else None),  # type: ignore[arg-type]
+            task=TaskSpec(type=as_task(task), source=source.id, target=chosen[1].id if needs_target else None),
             seed=seed,
         ).model_dump()
         return parse_scene_spec(data, catalog=catalog, bounds=bounds)

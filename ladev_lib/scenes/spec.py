@@ -32,22 +32,19 @@ from __future__ import annotations
 
 import json
 from collections import Counter
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, model_validator
 
 from ladev_lib.scenes.feasibility import task_feasibility
+from ladev_lib.vocabulary import TASKS_WITH_TARGET, Robot, Role, TaskType
 
 if TYPE_CHECKING:
     from ladev_lib.catalog import Catalog
 
 SCENE_SPEC_VERSION: Literal[1] = 1
 
-Robot = Literal["panda", "widowx", "google_robot"]
-TaskType = Literal["pick_up", "move_near", "put_on", "put_in"]
-Role = Literal["source", "target", "distractor"]
-
-TASKS_WITH_TARGET: frozenset[str] = frozenset({"move_near", "put_on", "put_in"})
 MAX_LIGHTING_DELTA = 0.5
 
 
@@ -110,6 +107,15 @@ class CameraOffset(BaseModel):
         description="[roll, pitch, yaw] in the camera's frame, degrees "
         "(pitch > 0 tilts down, yaw > 0 pans left).",
     )
+
+    @classmethod
+    def rounded(cls, translation_m: Iterable[float], rotation_deg: Iterable[float]) -> CameraOffset:
+        """From any three-number sequences (numpy arrays too), rounded to 0.1 mm and 0.01 deg."""
+        t = [round(float(v), 4) for v in translation_m]
+        r = [round(float(v), 2) for v in rotation_deg]
+        if len(t) != 3 or len(r) != 3:
+            raise ValueError(f"camera offset needs three numbers each, got {t} and {r}")
+        return cls(translation_m=(t[0], t[1], t[2]), rotation_deg=(r[0], r[1], r[2]))
 
     @property
     def is_default(self) -> bool:

@@ -15,6 +15,7 @@ reason.
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -27,8 +28,9 @@ from ladev_lib.llm.prompts import PromptTemplate, build_request
 from ladev_lib.scenes.compiler import CompileConfig, DesignExpectation, compile_operations
 from ladev_lib.scenes.operations import SceneOperations, operations_json_schema
 from ladev_lib.scenes.resolve import ObjectResolver
-from ladev_lib.scenes.spec import Robot, SceneBounds, SceneSpec
+from ladev_lib.scenes.spec import SceneBounds, SceneSpec
 from ladev_lib.tables import CompiledSceneRow, SceneDesignRow
+from ladev_lib.vocabulary import Robot
 
 JOB = "compile_scene"
 
@@ -87,7 +89,7 @@ class CompiledScene:
         }
 
 
-def object_listing(catalog: Catalog, sets: list[str] | None = None) -> list[dict[str, Any]]:
+def object_listing(catalog: Catalog, sets: Sequence[str] | None = None) -> list[dict[str, Any]]:
     """The catalog (or some of its sets) as the prompts list it."""
     return [
         {
@@ -193,6 +195,6 @@ def scene_text_of_row(row: SceneDesignRow) -> SceneText:
         task=row.task,
         seed=row.seed,
         object_set=row.object_set,
-        robot=row.robot,  # type: ignore[arg-type]
+        robot=row.robot,
         expected=DesignExpectation(row.task, row.num_objects, row.object_set, row.environment),
     )

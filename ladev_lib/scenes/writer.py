@@ -27,6 +27,7 @@ from ladev_lib.catalog import Catalog, CatalogObject
 from ladev_lib.language.instructions import basic_instruction
 from ladev_lib.scenes.sampling import sample_scene
 from ladev_lib.scenes.spec import CameraOffset, ObjectPlacement, SceneBounds
+from ladev_lib.vocabulary import as_object_set
 
 STYLES = ("structured", "prose", "terse", "commands", "list")
 _WORDS = ["zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"]
@@ -255,7 +256,7 @@ def write_scene(
     bounds = bounds or SceneBounds()
     rng = np.random.default_rng(seed)
     spec = sample_scene(
-        task, num_objects, object_set, rng, catalog, bounds,  # type: ignore[arg-type]
+        task, num_objects, as_object_set(object_set), rng, catalog, bounds,
         environment=environment, seed=seed, min_gap_m=_WRITER_GAP_M,
     )
     style = style or str(STYLES[int(rng.integers(len(STYLES)))])

@@ -13,7 +13,7 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
-from ladev_lib.scenes.spec import Robot, TaskType
+from ladev_lib.vocabulary import Robot, TaskType
 
 
 class SimConfig(BaseModel):

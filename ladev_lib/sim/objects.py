@@ -199,9 +199,11 @@ def cooked_hull_volume(collision_file: str) -> float:
 def _mesh_box(collision_file: str, upright: tuple[float, float, float]) -> tuple[Array, Array]:
     """(centre, half extents) of the collision mesh after the upright rotation."""
     mesh = trimesh.load(collision_file, force="mesh")
+    if not isinstance(mesh, trimesh.Trimesh):
+        raise ValueError(f"{collision_file}: not a single mesh ({type(mesh).__name__})")
     q = euler2quat(*np.radians(upright))
     rot = sapien.Pose(q=q).to_transformation_matrix()[:3, :3]
-    v = np.asarray(mesh.vertices) @ rot.T  # type: ignore[attr-defined]
+    v = np.asarray(mesh.vertices) @ rot.T
     lo, hi = v.min(axis=0), v.max(axis=0)
     return (lo + hi) / 2, (hi - lo) / 2
 
@@ -246,6 +248,8 @@ def build_object(
     prefer_mesh: bool = True,
 ) -> tuple[object, BuiltObject]:
     """Build ``obj`` as a dynamic actor named ``name``; mesh when available, else stand-in."""
+    # ManiSkill's scene class is not typed for mypy here (mani_skill is an untyped import), so the
+    # parameter is `object`; create_actor_builder is its public API.
     builder = scene.create_actor_builder()  # type: ignore[attr-defined]
     files = mesh_files(obj, asset_dir) if prefer_mesh else None
     if files is not None:

@@ -33,8 +33,6 @@ from ladev_lib.arrays import Array
 from ladev_lib.registry import Registry
 from ladev_lib.sim.geometry import look_at, quat_mul, quat_to_matrix
 
-TASK_NAMES = ("pick_up", "move_near", "put_on", "put_in")
-
 
 @dataclass(frozen=True)
 class PinholeCamera:

@@ -118,7 +118,7 @@ def control_rows(
                     valid=False,
                     reason=note,
                     selected=True,
-                    control=kind,  # type: ignore[arg-type]
+                    control=kind,
                 )
             )
     return rows

@@ -31,22 +31,30 @@ seed and that id alone, so neither changes when the study grows.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from ladev_lib.scenes.spec import SceneBounds, TaskType
+from ladev_lib.scenes.spec import SceneBounds
 from ladev_lib.seeding import derive_seed
+from ladev_lib.vocabulary import (
+    ENVIRONMENTS,
+    OBJECT_SETS,
+    ControlKind,
+    Environment,
+    Factor,
+    ObjectSetName,
+    TaskType,
+    as_environment,
+    as_factor,
+    as_object_set,
+)
 
-FactorName = Literal["num_objects", "instruction", "object_set", "environment"]
-ControlName = Literal["empty", "unrelated", "other_object"]
-ObjectSetName = Literal["simpler", "ycb"]
 INSTRUCTION_LEVEL = "basic+paraphrase"
 _LEVELS: dict[str, set[str]] = {
     "instruction": {"basic", "paraphrase"},
-    "object_set": {"simpler", "ycb"},
-    "environment": {"default", "lighting", "camera"},
+    "object_set": set(OBJECT_SETS),
+    "environment": set(ENVIRONMENTS),
 }
 
 
@@ -73,7 +81,7 @@ class StudyConfig(BaseModel):
     seed: int = Field(default=0, ge=0)
     tasks: list[TaskType] = Field(min_length=1)
     default_object_set: ObjectSetName = "simpler"
-    factors: dict[FactorName, FactorConfig]
+    factors: dict[Factor, FactorConfig]
     batch_size: int = Field(default=10, ge=1, le=100, description="Scene descriptions asked per LLM call.")
     paraphrases_per_instruction: int = Field(default=10, ge=1)
     bounds: SceneBounds = SceneBounds()
@@ -81,15 +89,15 @@ class StudyConfig(BaseModel):
         default=1, ge=1, le=1000,
         description="Runs of each (scene, instruction), each trial with its own seed.",
     )
-    trial_factors: list[FactorName] | None = Field(
+    trial_factors: list[Factor] | None = Field(
         default=None,
         description="Factors whose scenes get trials_per_scene trials (the others one); null: all.",
     )
-    controls: list[ControlName] = Field(
+    controls: list[ControlKind] = Field(
         default_factory=list,
         description="Control instructions run on the same scenes: empty | unrelated | other_object.",
     )
-    control_factors: list[FactorName] | None = Field(
+    control_factors: list[Factor] | None = Field(
         default=None, description="Factors whose scenes get the controls; null: all."
     )
 
@@ -99,7 +107,7 @@ class StudyConfig(BaseModel):
             return self.trials_per_scene
         return 1
 
-    def controls_for(self, factor: str) -> list[str]:
+    def controls_for(self, factor: str) -> list[ControlKind]:
         """The control instructions scenes of ``factor`` get."""
         if self.control_factors is None or factor in self.control_factors:
             return list(self.controls)
@@ -139,12 +147,12 @@ class DesignedScene:
 
     scene_id: str
     task: str
-    factor: str
+    factor: Factor
     level: str
     index: int
     num_objects: int
-    object_set: str
-    environment: str
+    object_set: ObjectSetName
+    environment: Environment
     seed: int
 
     @property
@@ -161,14 +169,14 @@ def cell_levels(study: StudyConfig, factor: str) -> list[str]:
     """The levels scenes are generated for (``instruction`` has one: basic+paraphrase)."""
     if factor == "instruction":
         return [INSTRUCTION_LEVEL]
-    return [str(level) for level in study.factors[factor].levels]  # type: ignore[index]
+    return [str(level) for level in study.factors[as_factor(factor)].levels]
 
 
 def designed_scene(study: StudyConfig, task: str, factor: str, level: str, index: int) -> DesignedScene:
     """Scene ``index`` of a (task, factor, level) cell; defined for any index, even beyond the study."""
     sid = scene_id(task, factor, level, index)
     seed = derive_seed(study.seed, sid)
-    cfg = study.factors[factor]  # type: ignore[index]
+    cfg = study.factors[as_factor(factor)]
     if factor == "num_objects":
         count = int(level)
     else:
@@ -179,12 +187,12 @@ def designed_scene(study: StudyConfig, task: str, factor: str, level: str, index
     return DesignedScene(
         scene_id=sid,
         task=task,
-        factor=factor,
+        factor=as_factor(factor),
         level=level,
         index=index,
         num_objects=count,
-        object_set=level if factor == "object_set" else study.default_object_set,
-        environment=level if factor == "environment" else "default",
+        object_set=as_object_set(level) if factor == "object_set" else study.default_object_set,
+        environment=as_environment(level) if factor == "environment" else "default",
         seed=seed,
     )
 

@@ -28,6 +28,7 @@ from ladev_lib.llm.prompts import PromptTemplate, build_request
 from ladev_lib.scenes.text_to_scene import object_listing
 from ladev_lib.study.design import Batch, DesignedScene, StudyConfig, plan_batches
 from ladev_lib.tables import SceneDesignRow
+from ladev_lib.vocabulary import Robot
 
 JOB = "describe_scenes"
 
@@ -107,7 +108,7 @@ class GenerationResult:
 def _rows(
     batch: Batch,
     study: StudyConfig,
-    robot: str,
+    robot: Robot,
     result: JsonResult[Any] | None,
     reason: str | None,
 ) -> list[SceneDesignRow]:
@@ -123,11 +124,11 @@ def _rows(
                 scene_id=it.scene_id,
                 study=study.name,
                 task=it.task,
-                factor=it.factor,  # type: ignore[arg-type]
+                factor=it.factor,
                 level=it.level,
                 num_objects=it.num_objects,
-                object_set=it.object_set,  # type: ignore[arg-type]
-                environment=it.environment,  # type: ignore[arg-type]
+                object_set=it.object_set,
+                environment=it.environment,
                 robot=robot,
                 seed=it.seed,
                 description=ans.description if ans else None,
@@ -147,7 +148,7 @@ def generate_descriptions(
     llm: LLMConfig,
     catalog: Catalog,
     *,
-    robot: str = "panda",
+    robot: Robot = "panda",
     catalog_path: str | None = None,
     on_batch: Callable[[int], None] | None = None,
 ) -> GenerationResult:

@@ -15,7 +15,7 @@ from __future__ import annotations
 from ladev_lib.fingerprint import PACKAGE_ROOT, imported_modules, module_file, package_modules
 
 LAYERS: tuple[frozenset[str], ...] = (
-    frozenset({"", "arrays", "errors", "registry", "store", "tables", "config", "fingerprint", "seeding"}),
+    frozenset({"", "arrays", "errors", "registry", "store", "tables", "config", "fingerprint", "seeding", "vocabulary"}),
     frozenset({"catalog", "assets"}),
     frozenset({"llm"}),
     frozenset({"language"}),
