@@ -84,6 +84,9 @@ class CompiledSceneRow(TableRow):
     """One compiled scene: the ``compile`` stage's output (``compiled.parquet``)."""
 
     TABLE: ClassVar[str] = "compiled_scenes"
+    SCHEMA_VERSION: ClassVar[int] = 2
+    """2: no physical-validity columns; the check runs at the start of each episode (with
+    the policy's robot and camera), and its verdict is the episode's ``invalid_scene``."""
 
     scene_id: str = Field(description="Scene id from scenes.parquet (or the user's file).")
     status: Literal["ok", "rejected"] = Field(description="'rejected' when no valid spec could be made.")
@@ -91,9 +94,6 @@ class CompiledSceneRow(TableRow):
     operations_json: str | None = Field(default=None, description="The LLM's operations, as JSON.")
     spec_json: str | None = Field(default=None, description="The SceneSpec, as JSON (null if rejected).")
     notes: list[str] = Field(default_factory=list, description="Adjustments made: clamped values, random picks.")
-    object_sources: list[str] = Field(default_factory=list, description="Per object: 'mesh' or 'standin' (filled when built).")
-    validity: Literal["ok", "invalid", "not_checked"] = Field(default="not_checked", description="Physical-validity verdict.")
-    validity_reason: str | None = Field(default=None, description="Why the scene is physically invalid.")
     llm_call_ids: list[str] = Field(default_factory=list, description="Cache keys of the LLM calls used.")
 
 

@@ -3,7 +3,8 @@
 Reads ``study.bounds``, ``llm``, ``compile``, ``prompts.compile_scene``, ``catalog``
 and ``paths``; writes ``paths.compiled``. LLM calls are cached in
 ``paths.llm_cache_dir/compile``. A bad description is a ``rejected`` row, never a
-crash. The physical-validity check runs at rollout: ``validity`` is ``not_checked`` here.
+crash. The physical-validity check runs at rollout, at the start of each episode: its
+verdict is the episode's ``invalid_scene`` status.
 
 ``ladev compile`` (a user's own JSONL of descriptions) and ``ladev scene`` use the
 same set-up (:func:`scene_compiler`) and the same thread pool (:func:`compile_all`).

@@ -50,7 +50,7 @@ class StudySummary:
     validity_ok: int = 0
     validity_invalid: int = 0
     validity_source: str = "none"
-    """Where the physical-validity verdicts come from: "compile", "rollout" (one verdict per
+    """Where the physical-validity verdicts come from: "rollout" (one verdict per
     scene and policy, since the robot and camera are the policy's), or "none"."""
     basic_instructions: int = 0
     paraphrase_candidates: int = 0
@@ -114,10 +114,7 @@ def summarize_study(
     else:
         values["compiled"] = compiled.height
         values["compiled_ok"] = compiled.filter(pl.col("status") == "ok").height
-        values["validity_ok"] = compiled.filter(pl.col("validity") == "ok").height
-        values["validity_invalid"] = compiled.filter(pl.col("validity") == "invalid").height
         reasons += _top_reasons(compiled, "reason", "compile", reasons_per_stage)
-        reasons += _top_reasons(compiled, "validity_reason", "validity", reasons_per_stage)
     if instructions is None:
         values["missing_inputs"].append("instructions")
     else:
@@ -129,9 +126,7 @@ def summarize_study(
         reasons += _top_reasons(para, "reason", "paraphrase", reasons_per_stage)
     values["episodes"] = episodes.height
     values["by_status"] = dict(episodes.group_by("status").len("count").iter_rows())
-    if values.get("validity_ok", 0) + values.get("validity_invalid", 0) > 0:
-        values["validity_source"] = "compile"
-    elif not episodes.is_empty():
+    if not episodes.is_empty():
         # The check ran at the start of each episode, with the policy's robot and camera.
         per_scene = episodes.group_by(["policy", "scene_id"]).agg(
             (pl.col("status") == "invalid_scene").any().alias("invalid")

@@ -211,9 +211,6 @@ def stage_tables_for(
         operations_json=pl.lit("[]"),
         spec_json=pl.when(~rejected).then(pl.lit("{}")),
         notes=pl.lit([], dtype=pl.List(pl.String)),
-        object_sources=pl.lit([], dtype=pl.List(pl.String)),
-        validity=pl.when(rejected).then(pl.lit("not_checked")).otherwise(pl.lit("ok")),
-        validity_reason=pl.lit(None, dtype=pl.String),
         llm_call_ids=pl.lit([], dtype=pl.List(pl.String)),
     )
     ok_scenes = scenes.filter(~rejected).select("scene_id")

@@ -148,9 +148,6 @@ def run_rollout(
             outcomes[key] = loaded
     from_store = len(outcomes)
     stored = set(outcomes)
-    for eid, p in unique.items():
-        if eid not in outcomes and p.known_invalid is not None:
-            outcomes[eid] = EpisodeOutcome.failed("invalid_scene", p.scene_robot, p.known_invalid)
     todo: list[EpisodeJob] = [p.job for eid, p in unique.items() if eid not in outcomes]
 
     bar = _Progress(len(unique), len(unique) - len(todo), label, progress)

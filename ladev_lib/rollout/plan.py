@@ -7,8 +7,8 @@ for scenes of the ``instruction`` factor with its selected paraphrase
 ``trials`` times (:class:`TrialPlan`), trial ``t`` with the seed
 ``trial_seed(scene seed, t)``. The episode's study metadata (factor,
 level, object set, ...) comes from scenes.parquet; for the instruction factor
-the level is the instruction's kind. A scene the compile stage already found
-physically invalid becomes an ``invalid_scene`` row without simulating it.
+the level is the instruction's kind. Physical validity is checked by the
+episode itself, at its start (an ``invalid_scene`` row when the check fails).
 """
 
 from __future__ import annotations
@@ -34,8 +34,6 @@ class EpisodePlan:
     meta: dict[str, Any]
     """The row's study fields (ids, factor, level, instruction, seed, ...); the run adds the rest."""
     scene_robot: str
-    known_invalid: str | None = None
-    """The compile stage's physical-validity verdict, when it found the scene invalid."""
 
     @property
     def sort_key(self) -> tuple[str, int, int, str]:
@@ -147,9 +145,6 @@ def plan_episodes(
         if meta_scene["factor"] == "instruction":
             chosen += [r for r in texts if r["kind"] == "paraphrase" and r.get("selected")]
         chosen += [r for r in texts if r["kind"] == "control" and r.get("selected")]
-        invalid = None
-        if row.get("validity") == "invalid":
-            invalid = row.get("validity_reason") or "invalid scene (compile stage)"
         for trial in range(trials.trials_for(str(meta_scene["factor"]))):
             seed = trial_seed(spec.seed, trial)
             for ins in chosen:
@@ -183,6 +178,6 @@ def plan_episodes(
                     episode_id=eid, spec_json=row["spec_json"], instruction=ins["text"], seed=seed,
                     stop_on_success=trials.stop_on_success,
                 )
-                plans.append(EpisodePlan(job, meta, spec.robot, invalid))
+                plans.append(EpisodePlan(job, meta, spec.robot))
     plans.sort(key=lambda p: p.sort_key)
     return plans

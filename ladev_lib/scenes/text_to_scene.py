@@ -71,7 +71,6 @@ class CompiledScene:
             operations_json=self.operations.to_json() if self.operations is not None else None,
             spec_json=self.spec.to_json() if self.spec is not None else None,
             notes=self.notes,
-            validity="not_checked",
             llm_call_ids=self.call_ids,
         )
 

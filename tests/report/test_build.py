@@ -197,7 +197,7 @@ def test_html_escapes_text_from_the_llm(study, tmp_path):
     assert "&lt;script&gt;" in html and "two cans &amp; a bowl" in html
 
 
-def test_physical_validity_is_taken_from_rollout_when_compile_did_not_check():
+def test_physical_validity_is_taken_from_the_episodes():
     from ladev_lib.report.summary import summarize_study
     from ladev_lib.report.synthetic import CellCounts, episodes_from_counts
 
@@ -208,10 +208,8 @@ def test_physical_validity_is_taken_from_rollout_when_compile_did_not_check():
         ]
     )
     compiled = pl.DataFrame(
-        {"scene_id": ["a"], "status": ["ok"], "validity": ["not_checked"], "reason": [None],
-         "validity_reason": [None]},
-        schema={"scene_id": pl.String, "status": pl.String, "validity": pl.String,
-                "reason": pl.String, "validity_reason": pl.String},
+        {"scene_id": ["a"], "status": ["ok"], "reason": [None]},
+        schema={"scene_id": pl.String, "status": pl.String, "reason": pl.String},
     )
     summary = summarize_study(episodes, None, compiled, None)
     assert summary.validity_source == "rollout"

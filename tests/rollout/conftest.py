@@ -38,7 +38,7 @@ def write_study(
     Each entry: ``scene_id``, ``task`` (default pick_up), ``factor`` (default
     num_objects), ``level`` ("1"), ``num_objects`` (1), ``seed`` (index),
     ``basic`` (instruction text; default the basic form), ``paraphrases`` (list of
-    (text, selected)), ``status`` ("ok"), ``validity`` ("not_checked").
+    (text, selected)), ``status`` ("ok").
     """
     catalog = load_catalog()
     design, compiled, instructions = [], [], []
@@ -63,7 +63,6 @@ def write_study(
         compiled.append(CompiledSceneRow(
             scene_id=s["scene_id"], status="ok" if ok else "rejected",
             reason=None if ok else "rejected by the test", spec_json=spec.to_json() if ok else None,
-            validity=s.get("validity", "not_checked"), validity_reason=s.get("validity_reason"),
         ))
         instructions.append(InstructionRow(
             instruction_id=f"{s['scene_id']}/basic", scene_id=s["scene_id"], kind="basic",

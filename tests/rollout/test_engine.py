@@ -20,7 +20,7 @@ HEALTHY = [
     {"scene_id": "a"},
     {"scene_id": "b", "factor": "instruction", "paraphrases": [("grab that object", True), ("no", False)]},
     {"scene_id": "c", "task": "put_on", "num_objects": 2},
-    {"scene_id": "d", "validity": "invalid", "validity_reason": "falls over at spawn"},
+    {"scene_id": "d-bad-scene"},  # fails the validity check at the start of its episode
 ]
 # Failures every executor reports the same way (no process dies, nothing hangs).
 DETERMINISTIC_FAILURES = [
@@ -38,17 +38,17 @@ def statuses(df: pl.DataFrame) -> dict[str, str]:
 def test_serial_run_then_rerun_runs_nothing(toy_env):
     write_study(toy_env, HEALTHY)
     first = run_toy(toy_env, toy_config())
-    assert (first.summary.planned, first.summary.ran) == (5, 4)  # d is known invalid: not simulated
+    assert (first.summary.planned, first.summary.ran) == (5, 5)
     df = read_episodes(toy_env)
     assert statuses(df) == {
         "a/basic": "success", "b/basic": "success", "b/para-0": "success",
-        "c/basic": "success", "d/basic": "invalid_scene",
+        "c/basic": "success", "d-bad-scene/basic": "invalid_scene",
     }
     assert df["level"].to_list() == ["1", "basic", "paraphrase", "2", "1"]
-    assert len(run_log(toy_env)) == 4
+    assert len(run_log(toy_env)) == 4  # the invalid scene never reaches the policy
 
     again = run_toy(toy_env, toy_config())
-    assert (again.summary.ran, again.summary.from_store) == (0, 4)
+    assert (again.summary.ran, again.summary.from_store) == (0, 5)  # the invalid verdict is kept too
     assert len(run_log(toy_env)) == 4  # nothing ran twice
     assert comparable(read_episodes(toy_env)).equals(comparable(df))
     assert read_episodes(toy_env).equals(df)  # timings come from the store too

@@ -35,12 +35,6 @@ def test_basic_always_selected_paraphrase_only_for_the_instruction_factor(tmp_pa
     assert len({p.job.episode_id for p in plans}) == 3
 
 
-def test_compile_invalid_scene_is_planned_as_invalid(tmp_path):
-    write_study(tmp_path, [{"scene_id": "a", "validity": "invalid", "validity_reason": "falls off the table"}])
-    (p,) = plan(tmp_path)
-    assert p.known_invalid == "falls off the table"
-
-
 def test_scene_missing_from_the_design_gets_metadata_from_its_spec(tmp_path):
     write_study(tmp_path, [{"scene_id": "a", "task": "put_on", "num_objects": 2}])
     (p,) = plan(tmp_path, scenes=None)
