@@ -126,7 +126,7 @@ def overhead(specs: list[Any], steps: int, size: tuple[int, int], repeats: int) 
 
     def engine(spec: Any, actions: np.ndarray) -> tuple[float, float]:
         policy = ReplayPolicy(actions, size)
-        job = EpisodeJob("bench", spec.to_json(), "replay", spec.seed)
+        job = EpisodeJob("bench", spec, "replay", spec.seed)
         setup_before = sum(c.seconds for c in setup_calls)
         t0 = time.perf_counter()
         out = run_episode(sim, policy, job, None)

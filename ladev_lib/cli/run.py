@@ -71,7 +71,7 @@ def command(
                 ),
             )
             worker = EpisodeWorker(worker_spec)
-            job = EpisodeJob("episode", spec.to_json(), text, spec.seed if seed is None else seed)
+            job = EpisodeJob("episode", spec, text, spec.seed if seed is None else seed)
             outcome = worker.run(job)
             explain = getattr(worker.policy, "explain", None)
             explanation = explain() if callable(explain) else None

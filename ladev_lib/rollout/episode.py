@@ -174,7 +174,7 @@ def run_episode(
     limits: Limits | None = None,
 ) -> EpisodeOutcome:
     """Run one episode in ``sim`` (already built for the policy's robot and control mode)."""
-    spec = SceneSpec.model_validate_json(job.spec_json)
+    spec = job.spec
     run = _Run(robot or choose_robot(spec.robot, policy.info.robots))
     try:
         return _episode(sim, policy, job, spec, run, media, heartbeat or NoHeartbeat(), limits or Limits())

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from ladev_lib.rollout.config import VideoMode
+from ladev_lib.scenes.spec import SceneSpec
 from ladev_lib.vocabulary import EpisodeStatus
 
 if TYPE_CHECKING:
@@ -29,7 +30,8 @@ class EpisodeJob:
     """One episode to run: the scene, the instruction, the seed and its content id."""
 
     episode_id: str
-    spec_json: str
+    spec: SceneSpec
+    """The scene, parsed once (by the planner) and handed to the worker as the typed object."""
     instruction: str
     seed: int
     stop_on_success: bool = False

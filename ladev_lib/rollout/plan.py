@@ -175,7 +175,7 @@ def plan_episodes(
                 if meta_scene["factor"] == "instruction":
                     meta["level"] = ins["kind"]
                 job = EpisodeJob(
-                    episode_id=eid, spec_json=row["spec_json"], instruction=ins["text"], seed=seed,
+                    episode_id=eid, spec=spec, instruction=ins["text"], seed=seed,
                     stop_on_success=trials.stop_on_success,
                 )
                 plans.append(EpisodePlan(job, meta, spec.robot))

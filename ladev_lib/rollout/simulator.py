@@ -108,7 +108,7 @@ class ManiSkillSim:
         # physics scene keeps state (contacts, solver warm starts) from that episode, and
         # which episode came before depends on how the executor spread the work, so the
         # outcome would too.
-        self._env.reset(seed=seed, options={"spec": spec.model_dump(mode="json"), "reconfigure": True})
+        self._env.reset(seed=seed, options={"spec": spec, "reconfigure": True})
         self._spec = spec
 
     def action_bounds(self) -> tuple[Array, Array]:

@@ -93,7 +93,7 @@ def check_solvable(
     try:
         job = EpisodeJob(
             episode_id=f"solvability-{spec.scene_id or 'scene'}",
-            spec_json=spec.model_dump_json(),
+            spec=spec,
             instruction="",
             seed=spec.seed,
         )

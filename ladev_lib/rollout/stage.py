@@ -139,6 +139,8 @@ def rollout_stage(
         frames=rollout.frames,
         fps=rollout.video_fps,
     )
+    # The stage's media output exists even when every episode comes from the store.
+    Path(media.root).mkdir(parents=True, exist_ok=True)
     worker_spec = WorkerSpec(
         policy_name=pc.name,
         policy_config=pc.kwargs,

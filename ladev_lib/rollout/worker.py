@@ -25,7 +25,6 @@ from ladev_lib.rollout.episode import (
 )
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
 from ladev_lib.rollout.simulator import EpisodeSim, SimSetup
-from ladev_lib.scenes import SceneSpec
 
 if TYPE_CHECKING:
     from ladev_lib.policies.base import Policy
@@ -132,7 +131,7 @@ class EpisodeWorker:
         """The robot ``job`` runs with, and the policy to drive it: the robot the policy's config
         names for the task (``robot_by_task``), else the scene's robot, or the policy's first
         robot if it cannot drive the scene's."""
-        spec = SceneSpec.model_validate_json(job.spec_json)
+        spec = job.spec
         by_task = self.spec.robot_by_task.get(spec.task.type)
         if by_task is not None:
             return by_task, self.policy_for(by_task)

@@ -32,7 +32,7 @@ def episodes() -> list[tuple[str, EpisodeJob]]:
         text = f"pick up the {src}" if task == "pick_up" else "put it there"
         for trial_seed in (spec.seed, spec.seed + 1):
             for policy in ("oracle", "grounded"):
-                out.append((policy, EpisodeJob(f"{spec.scene_id}-{trial_seed}-{policy}", spec.to_json(),
+                out.append((policy, EpisodeJob(f"{spec.scene_id}-{trial_seed}-{policy}", spec,
                                                text, trial_seed)))
     return out
 

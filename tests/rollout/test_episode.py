@@ -24,7 +24,7 @@ def toy_sim(image_size=(32, 24)):
 
 
 def job(spec, instruction="pick it up", seed=0, stop_on_success=False):
-    return EpisodeJob("e1", spec.to_json(), instruction, seed, stop_on_success)
+    return EpisodeJob("e1", spec, instruction, seed, stop_on_success)
 
 
 class RecordingPolicy(Policy):

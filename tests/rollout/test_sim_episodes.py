@@ -47,7 +47,7 @@ def worker(tmp_path: Path, policy: str, robot_config: dict | None = None, **kwar
 
 
 def run(w: EpisodeWorker, spec: SceneSpec, instruction: str):
-    return w.run(EpisodeJob(spec.scene_id or "e", spec.to_json(), instruction, spec.seed))
+    return w.run(EpisodeJob(spec.scene_id or "e", spec, instruction, spec.seed))
 
 
 def test_grounded_reader_acts_on_what_it_reads_and_holds_still_otherwise(tmp_path):

@@ -14,7 +14,6 @@ from collections.abc import Callable, Sequence
 from typing import Protocol
 
 from ladev_lib.rollout.jobs import EpisodeJob, EpisodeOutcome, WorkerSpec
-from ladev_lib.scenes import SceneSpec
 
 OnOutcome = Callable[[EpisodeJob, EpisodeOutcome], None]
 
@@ -35,7 +34,7 @@ PHASE_WORDS: dict[str, str] = {
 
 
 def scene_robot(job: EpisodeJob) -> str:
-    return SceneSpec.model_validate_json(job.spec_json).robot
+    return job.spec.robot
 
 
 def hang_outcome(job: EpisodeJob, robot: str | None, phase: str, step: int, limit_s: float) -> EpisodeOutcome:
