@@ -50,6 +50,11 @@ SETS: dict[str, tuple[Path, str]] = {
         ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout.csv",
         "open vocabulary held-out, written for issue 11 before it was first scored",
     ),
+    "open_vocab_holdout2": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout2.csv",
+        "second open-vocabulary held-out set (carrying to a receptacle, above, part synonyms, "
+        "step-by-step and lift-from-move-to forms), written before it was first scored",
+    ),
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 LIBERO_PRO_CITATION = (
@@ -67,12 +72,29 @@ NOTES = (
     "two scene names of one catalog object merged; 1 false invalid: \"move to the ladle, grasp it\", "
     "a pronoun after a movement to the object). The three general fixes that followed are in the "
     "figures below, so from then on it is a development set too.",
+    "`open_vocab_holdout2` (42 pairs: carrying verbs + \"to\" a receptacle, \"above\", part and "
+    "position synonyms, step-by-step and \"lift X from Y and move to Z\" forms) was written before it "
+    "was first scored and scored once, before any change for it: precision 1.000, recall 0.250 (0 false "
+    "valid, 15 false invalid: 6 carrying verb + \"to\" a receptacle read as move_near, 1 \"above\" "
+    "not read as on, 4 part / position synonyms (rear/back, slot/compartment, upper/top, lower/bottom), "
+    "1 \"lift ... from ... and move to\" read as taking away, 1 \"over to the rack and set it on "
+    "top\" read as an extra step, and 2 rows whose original names a noun several catalog objects fit "
+    "(\"the bottle\", \"the cup\") with no scene).",
+    "After that first score, general rules (developed on LIBERO-PRO and on this set's errors): a "
+    "carrying verb (move, bring, carry, take, transfer) + \"to\" a surface or receptacle head noun "
+    "puts the object on / in it, \"to\" anything else stays near (\"over to\", sliding and pushing "
+    "too); \"above\" after a putting verb is on; \"lift X from Y and move to Z\" carries X; \"over "
+    "to the rack and set it on top\" completes the destination; rear/back, middle/center, upper/top, "
+    "lower/bottom, slot/section/cubby/compartment compare as one word; at / in / on / from before a "
+    "position (\"in the middle of the table\", \"from table center\") locate alike. Both sets are "
+    "development sets from then on: no held-out figure after these fixes exists yet.",
+    "Left: `open_vocab_holdout2`'s 2 rows whose original names a noun several catalog objects fit "
+    "(\"the bottle\", \"the cup\") with no scene (not understood, by the catalog convention); "
+    "`open_vocab`'s \"vessel\" for a scene's bowl (no name or head fits; MiniLM cosine of \"vessel\" "
+    "and \"bowl\" 0.24, below the 0.60 grounding threshold).",
     "No scene given: a phrase grounds on the catalog, so \"plate\" and \"dinner plate\" (two catalog "
     "plates) stay different objects; with `scene_objects` (ids or names) \"dinner plate\" is the scene's "
     "plate.",
-    "LIBERO-PRO false invalids left: \"move X to the plate\" reads as move_near (the project's meaning "
-    "of \"to\"), \"above the cabinet\" is not \"on\", \"rear compartment\" / \"slot\" for \"back "
-    "compartment\" (same head, different modifiers, or another head below the embedding threshold).",
 )
 
 

@@ -65,7 +65,8 @@ class Governed:
     """What the relation word comes right after: "bare" (the acted-on phrase) or "governed"."""
     qualifier: str | None = None
     """Set by the parser when the relation describes a phrase instead of stating the task:
-    "object" ("the bowl *next to the plate*") or "destination" ("the compartment *of the caddy*")."""
+    "object" ("the bowl *next to the plate*") or "destination" ("the compartment *of the caddy*");
+    "completes" when it only says how the object ends at a destination named before ("set it *on top*")."""
 
     @property
     def dangling(self) -> bool:
@@ -248,6 +249,40 @@ class ClauseReader:
         c.verb = _main_verb(verbs)
         c.alternatives = saw_or and len({r.object_id or r.text for r in c.refs()}) > 1
         _with_as_source(c)
+        self._placement_words(c)
+
+    def _placement_words(self, c: Clause) -> None:
+        """Relation words whose placement depends on the verb and the noun after them.
+
+        "move the mug *to the tray*": carried to a surface, it ends on it ("in" for a
+        receptacle: "bring the apple to the basket"); "to" anything else stays "near"
+        ("shift the lamp over to the monitor"). "put the bowl *above* the cabinet": a
+        putting verb puts it on.
+        """
+        if c.verb is None or c.verb.lemma is None:
+            return
+        lemma = c.verb.lemma
+        for g in c.governed:
+            words = tuple(g.phrase.split())
+            if lemma in lx.CARRY_VERBS and g.relation == "near" and words in lx.CARRY_TO:
+                kind = self.receptacle_kind(g.refs[0]) if g.refs else None
+                if kind is not None:
+                    g.relation = kind
+            elif lemma in lx.PUT_VERBS and g.relation == "other" and words in lx.ABOVE_AS_ON and g.refs:
+                g.relation = "on"
+
+    def receptacle_kind(self, ref: Ref) -> str | None:
+        """ "on" for a surface ("the tray"), "in" for a receptacle ("the basket"), else None."""
+        if ref.pronoun or ref.object_id is None:
+            return None
+        heads = {(ref.words or tuple(ref.text.split()) or ("",))[-1]}
+        if not ref.free:
+            heads.add(self.index.display_name(ref.object_id).split()[-1])
+        if heads & lx.SURFACE_HEADS:
+            return "on"
+        if heads & lx.CONTAINER_HEADS:
+            return "in"
+        return None
 
     def _refs_of(self, phrase: list[Token], free_ok: bool = True) -> tuple[list[Ref], list[str]]:
         """The object references in one noun phrase, and its text if it names a place instead."""

@@ -235,12 +235,14 @@ class Grounder:
         "from" fits "on" and "in") and every landmark of the shorter list must
         match one of the other's.
         """
-        qa = [_with_places(q) for q in a.qualifiers if q.landmarks or q.places]
-        qb = [_with_places(q) for q in b.qualifiers if q.landmarks or q.places]
-        if not qa or not qb:
+        stated_a = [q for q in a.qualifiers if q.landmarks or q.places]
+        stated_b = [q for q in b.qualifiers if q.landmarks or q.places]
+        if not stated_a or not stated_b:
             return None
+        qa = [_with_places(q) for q in stated_a]
+        qb = [_with_places(q) for q in stated_b]
         ra, rb = qa[0].relation, qb[0].relation
-        if ra != rb and not ({ra, rb} <= {"from", "on", "in"} and "from" in {ra, rb}):
+        if ra != rb and not _same_location(ra, rb, stated_a[0], stated_b[0]):
             return f"'{a.text} {ra} ...' -> '{b.text} {rb} ...'"
         la = [p for q in qa for p in q.landmarks]
         lb = [p for q in qb for p in q.landmarks]
@@ -265,7 +267,7 @@ class Grounder:
         """Two phrases at least one of which is free: by head noun, else by embedding."""
         if id_a is not None and self._fits_catalog(b, id_a) or id_b is not None and self._fits_catalog(a, id_b):
             return True
-        if _singular(a.head) == _singular(b.head):
+        if lx.position_word(_singular(a.head)) == lx.position_word(_singular(b.head)):
             ma, mb = _descriptive(a.modifiers), _descriptive(b.modifiers)
             return ma <= mb or mb <= ma
         colours_a = {_COLOUR_ALIASES.get(w, w) for w in a.modifiers if w in _COLOURS}
@@ -301,7 +303,31 @@ def _bare(phrase: NounPhrase) -> NounPhrase:
 
 
 def _descriptive(modifiers: Iterable[str]) -> frozenset[str]:
-    return frozenset(w for w in modifiers if w not in lx.SIZE_WORDS)
+    """Modifiers that tell objects apart, position words as one ("rear" is "back")."""
+    return frozenset(lx.position_word(w) for w in modifiers if w not in lx.SIZE_WORDS)
+
+
+_LOCATIVE = frozenset({"from", "on", "in", "at"})
+"""Relation words that say where a thing is, interchangeable with "from" ("the bowl from the
+stove" is the bowl on it) and with each other before a position ("in the middle of the table",
+"at the center of the table")."""
+_POSITIONS = frozenset(
+    {"center", "middle", "centre", "edge", "corner", "side", "back", "rear", "front", "top", "bottom", "left", "right", "end"}
+)
+
+
+def _same_location(ra: str, rb: str, qa: Qualifier, qb: Qualifier) -> bool:
+    """Two locating relations that place a thing alike."""
+    if not {ra, rb} <= _LOCATIVE:
+        return False
+    return "from" in {ra, rb} or (_names_position(qa) and _names_position(qb))
+
+
+def _names_position(q: Qualifier) -> bool:
+    """A qualifier whose landmark is a position on something ("in *the middle*", "at *the center*")."""
+    return not q.landmarks and bool(q.places) and all(
+        lx.position_word(p.split()[-1]) in _POSITIONS for p in q.places if p.split()
+    )
 
 
 def _singular(word: str) -> str:

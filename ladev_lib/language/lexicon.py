@@ -176,6 +176,59 @@ DIRECTIONAL = frozenset(
      ("over", "to"), ("up", "to"), ("over", "onto"), ("down", "into")}
 )
 
+# -- "to" and "above" as placements ------------------------------------------------
+# "to" is "near" ("shift the lamp over to the monitor"), except after a verb that
+# carries the object there when what it is carried to is a receptacle or a surface:
+# "move the mug to the tray" puts it on the tray, "bring the apple to the basket"
+# puts it in the basket. Other nouns keep "near" ("move the stapler to the laptop").
+CARRY_VERBS = frozenset({"move", "bring", "carry", "take", "transfer", "transport", "relocate"})
+"""Verbs (lemmas) that carry an object to where "to" points."""
+CARRY_TO = frozenset({("to",)})
+"""Relation phrases that, after a carrying verb, end at a receptacle ("over to" stays near)."""
+SURFACE_HEADS = frozenset(
+    ["plate", "dish", "platter", "saucer", "tray", "rack", "shelf", "stove", "stovetop", "burner", "board", "mat", "placemat", "coaster"]
+)
+"""Head nouns of things an object is put on: carried "to" one, it ends on it."""
+CONTAINER_HEADS = frozenset(
+    ["basket", "bin", "bowl", "drawer", "caddy", "compartment", "slot", "section", "cubby", "sink", "pot", "bucket", "crate", "tub", "jar", "mug", "cup", "holder", "organizer", "fridge", "refrigerator", "microwave", "oven", "dishwasher"]
+)
+"""Head nouns of things an object is put in: carried "to" one, it ends inside it."""
+PUT_VERBS = frozenset({"put", "place", "set", "lay", "rest", "position", "stack", "sit", "stand", "park", "deposit", "plop"})
+"""Verbs (lemmas) of putting down: "put X above Y" puts X on Y."""
+ABOVE_AS_ON = frozenset({("above",)})
+"""Relation phrases that mean "on" after a putting verb."""
+
+# Words for the same position or part of a thing, compared as one word when two
+# phrases name a destination or a landmark ("rear compartment" is "back compartment").
+POSITION_SYNONYMS: dict[str, str] = {
+    "rear": "back",
+    "hind": "back",
+    "middle": "center",
+    "centre": "center",
+    "central": "center",
+    "mid": "center",
+    "upper": "top",
+    "uppermost": "top",
+    "topmost": "top",
+    "lower": "bottom",
+    "lowest": "bottom",
+    "bottommost": "bottom",
+    "slot": "compartment",
+    "section": "compartment",
+    "cubby": "compartment",
+    "cubbyhole": "compartment",
+    "pocket": "compartment",
+}
+
+
+def position_word(word: str) -> str:
+    """The one word for a position or part ("rear" -> "back", "slot" -> "compartment")."""
+    return POSITION_SYNONYMS.get(word, word)
+
+
+SIDE_WORDS = frozenset({"left", "right"})
+"""Sides, which describe the noun after them ("the right slot") even where "right" is an adverb."""
+
 PARTICLES = frozenset({"up", "down", "over", "back", "away", "out", "off", "around", "aside"})
 """Verb particles: a particle followed by no object is not a relation ("put it down")."""
 REVERSE_PARTICLES = frozenset({"away", "out", "off", "aside"})

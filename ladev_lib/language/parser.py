@@ -120,6 +120,9 @@ def _mark_qualifiers(act: _Action) -> None:
         merged_pick = act.kind == "place" and (c.kind == "pick" or c.reverse_pick)
         prev: Governed | None = None
         for g in c.governed:
+            if g.qualifier is not None:
+                prev = g
+                continue  # already read ("set it *on top*" completing a destination)
             if merged_pick and (g.refs or g.places) and _locates(g):
                 g.qualifier = "object"
             elif not g.directional and _locates(g) and (
@@ -179,6 +182,28 @@ def _mark_topics(clauses: list[Clause]) -> None:
             c.kind = "topic"
 
 
+_CHAINING = frozenset({"and", "then", "and then", ","})
+
+
+def _elided_objects(clauses: list[Clause]) -> None:
+    """ "lift the bowl from the stove and move to the plate": the object of a pick,
+    left out after it, is what "move" carries (alone, "move to the plate" moves the robot)."""
+    for prev, c in zip(clauses, clauses[1:], strict=False):
+        picked = (prev.kind == "pick" or prev.reverse_pick) and bool(prev.bare) and not prev.negation
+        if (
+            picked
+            and c.kind == "preamble"
+            and c.verb is not None
+            and c.verb.lemma == "move"
+            and not c.bare
+            and not c.negation
+            and (c.intro or "") in _CHAINING
+            and any(g.refs for g in c.placements())
+        ):
+            c.bare.append(Ref("it", pronoun=True))
+            c.kind = "place"
+
+
 def _same_object(a: _Action, b: _Action) -> bool:
     ids_a = {r.object_id for r in a.bare()}
     ids_b = {r.object_id for r in b.bare()}
@@ -217,12 +242,39 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)  # "put it on the plate after picking up the carrot"
     if a.kind == "place_nodest" and b.kind == "place":
         return _Action("place", both)
+    if a.kind == "place" and b.kind == "place" and _completes_destination(a, b):
+        return _Action("place", both)  # "bring it over to the rack and set it on top"
     if a.kind == "place" and b.kind == "release":
         return _Action("place", both)
     leaves = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma == "leave"
     if a.kind == "place" and leaves:
         return _Action("place", both)  # "... and leave it there"
     return None
+
+
+_SAME_PLACE = frozenset({"top", "there", "top of it"})
+"""Places that stand for the destination just named ("set it on top", "drop it in there")."""
+
+
+def _completes_destination(a: _Action, b: _Action) -> bool:
+    """``b`` only says how ``a``'s object ends at ``a``'s destination: "carry the cup over to the
+    tray and set it on top" puts it on the tray. ``a`` must carry the object *to* an object (a
+    directional "near"); ``b`` names no object of its own to put it on. The relation is ``b``'s."""
+    towards = [g for g in a.governed() if g.refs and g.relation in PLACEMENT]
+    if len(towards) != 1 or not (towards[0].directional and towards[0].relation in ("near", *PLACEMENT)):
+        return False
+    completing = [g for g in b.governed() if g.relation in PLACEMENT]
+    if not completing or any(g.refs or not set(g.places) <= _SAME_PLACE for g in completing):
+        return False
+    if any(r for r in b.bare() if not r.pronoun) or len({g.relation for g in completing}) != 1:
+        return False
+    relation = completing[0].relation
+    if towards[0].relation not in ("near", relation):
+        return False
+    towards[0].relation = relation
+    for g in completing:
+        g.qualifier = "completes"
+    return True
 
 
 class _Composer:
@@ -233,6 +285,7 @@ class _Composer:
 
     def compose(self) -> Frame:
         _mark_topics(self.clauses)
+        _elided_objects(self.clauses)
         _resolve_pronouns(self.clauses)
         negated = [c for c in self.clauses if c.negation and c.kind != "manner"]
         positive = [

@@ -200,8 +200,11 @@ def _tag_word(
         return Token("CONJ", w)
     if w in _STATIVE_PARTICIPLES and prev is not None and prev.kind in ("OBJ", "WORD"):
         return Token("ADV", w)  # "the bowl sitting on the cabinet": describes where it is
-    if w in lx.PARTICLES and not (after_det and _starts_phrase(words, i + 1, index)):
-        return Token("PART", w)  # after a determiner it describes the noun: "the back compartment"
+    describes = (after_det or (prev is not None and prev.kind == "REL")) and _starts_phrase(words, i + 1, index)
+    if w in lx.PARTICLES and not describes:
+        return Token("PART", w)  # after a determiner or a relation word it describes the noun: "(the) back slot"
+    if w in lx.SIDE_WORDS and describes:
+        return Token("WORD", w)  # "the right slot": a side, not "right now"
     if is_adverb(w) and w not in lx.VERBS:
         return Token("ADV", w)
     if w in lx.NEGATIONS and not (w == "no" and after_det):
