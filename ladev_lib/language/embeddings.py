@@ -71,6 +71,17 @@ class Embedder:
         return np.asarray((ea * eb).sum(axis=1), dtype=np.float32)
 
 
+SIMILARITY_DECIMALS = 4
+"""Every similarity a decision reads (a verdict, a grounding, a retrieved task) is rounded to
+this many decimals first: last-bit differences between CPUs' kernels, or between batches an
+embedding was computed in, then cannot change the decision."""
+
+
+def rounded(similarity: float) -> float:
+    """A similarity as decisions read it (:data:`SIMILARITY_DECIMALS`)."""
+    return round(float(similarity), SIMILARITY_DECIMALS)
+
+
 @functools.lru_cache(maxsize=4)
 def load_embedder(name_or_path: str | None = None, device: str = "cpu") -> Embedder:
     """The process-wide embedder for this model (loaded on first use)."""

@@ -30,6 +30,7 @@ from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.catalog.catalog import normalize_name
 from ladev_lib.language import lexicon as lx
+from ladev_lib.language.embeddings import rounded
 from ladev_lib.language.frames import NounPhrase, Qualifier
 from ladev_lib.language.mentions import NameIndex, name_index
 
@@ -191,7 +192,7 @@ class Grounder:
     def _similarity(self, text: str, obj: SceneObject) -> float:
         assert self.embedder is not None
         vectors = self._embed([text, *obj.names])
-        return max(float(vectors[text] @ vectors[n]) for n in obj.names)
+        return rounded(max(float(vectors[text] @ vectors[n]) for n in obj.names))
 
     def _embed(self, texts: Sequence[str]) -> dict[str, Array]:
         todo = [t for t in dict.fromkeys(texts) if t not in self._vectors]
@@ -279,7 +280,7 @@ class Grounder:
         texts_a = [a.text] if id_a is None else [normalize_name(n) for n in self.catalog.get(id_a).names]
         texts_b = [b.text] if id_b is None else [normalize_name(n) for n in self.catalog.get(id_b).names]
         vectors = self._embed([*texts_a, *texts_b])
-        best = max(float(vectors[x] @ vectors[y]) for x in texts_a for y in texts_b)
+        best = rounded(max(float(vectors[x] @ vectors[y]) for x in texts_a for y in texts_b))
         return best >= FREE_SAME_SIMILARITY
 
 

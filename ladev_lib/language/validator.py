@@ -32,6 +32,7 @@ import numpy as np
 from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.catalog.catalog import normalize_name
+from ladev_lib.language.embeddings import SIMILARITY_DECIMALS
 from ladev_lib.language.frames import Frame, NounPhrase
 from ladev_lib.language.grounding import Grounder, Grounding, SceneObject
 from ladev_lib.language.parser import InstructionParse, InstructionParser
@@ -200,11 +201,6 @@ def cpu_has_native_bf16() -> bool:
     except OSError:
         return False
     return any(flag in flags.split() for flag in ("avx512_bf16", "amx_bf16"))
-
-
-SIMILARITY_DECIMALS = 4
-"""Similarities are rounded to this many decimals before the threshold, as they are stored:
-last-bit differences between CPUs' kernels then cannot flip a verdict."""
 
 
 def resolve_precision(precision: str, device: str = "cpu") -> str:

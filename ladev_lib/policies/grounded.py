@@ -33,7 +33,12 @@ import numpy as np
 
 from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, CatalogObject, load_catalog
-from ladev_lib.language.embeddings import DEFAULT_MODEL, Embedder, load_embedder
+from ladev_lib.language.embeddings import (
+    DEFAULT_MODEL,
+    SIMILARITY_DECIMALS,
+    Embedder,
+    load_embedder,
+)
 from ladev_lib.language.frames import Frame
 from ladev_lib.language.grounding import Grounder
 from ladev_lib.language.instructions import basic_instruction
@@ -102,7 +107,8 @@ class TaskRetriever:
         if not candidates:
             raise ValueError("the scene affords no task (no graspable object)")
         query = self.embedder.encode([instruction])[0]
-        scores = self._vectors([c.text for c in candidates]) @ query
+        # rounded as every decision reads similarities, so that the choice is the same on any CPU
+        scores = np.round((self._vectors([c.text for c in candidates]) @ query).astype(np.float64), SIMILARITY_DECIMALS)
         order = np.argsort(-scores, kind="stable")  # ties: the first in scene order
         ranking = tuple((candidates[int(i)], float(scores[int(i)])) for i in order[:top])
         best = int(order[0])

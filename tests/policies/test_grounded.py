@@ -133,3 +133,51 @@ def test_reader_reads_the_task_on_the_table(reader, objects, instruction, expect
 def test_reader_says_why_it_holds_still(reader, objects, instruction, why):
     result = read(reader, objects, instruction)
     assert isinstance(result, str) and why in result
+
+
+
+class _NoisyEmbedder:
+    """Fixed unit vectors, one of them moved in its last bits (``jitter``), as another CPU's
+    kernels or another batch would move it."""
+
+    dimension = 3
+
+    def __init__(self, vectors: dict[str, list[float]], moved: str, jitter: float) -> None:
+        self.vectors, self.moved, self.jitter = vectors, moved, jitter
+
+    def encode(self, texts):
+        import numpy as np
+
+        out = np.array([self.vectors[t] for t in texts], dtype=np.float64)
+        for i, t in enumerate(texts):
+            if t == self.moved:
+                out[i, 0] += self.jitter
+        return (out / np.linalg.norm(out, axis=1, keepdims=True)).astype(np.float32)
+
+
+@pytest.mark.parametrize("jitter", [0.0, 1e-6, -1e-6])
+def test_a_tie_is_broken_the_same_way_whatever_the_last_bits(jitter):
+    from ladev_lib.policies.grounded import CandidateTask
+
+    # the two tasks are equally near the instruction, up to the last bits of one of them
+    vectors = {"fetch it": [1.0, 0.0, 0.0], "pick up the apple": [0.6, 0.8, 0.0], "pick up the pear": [0.6, -0.8, 0.0]}
+    candidates = [
+        CandidateTask("pick_up", "apple", None, "pick up the apple"),
+        CandidateTask("pick_up", "pear", None, "pick up the pear"),
+    ]
+    choice = TaskRetriever(_NoisyEmbedder(vectors, "pick up the pear", jitter)).choose("fetch it", candidates)
+    assert choice.chosen.source == "apple"  # the first in scene order, on every machine
+    assert choice.score == pytest.approx(0.6, abs=1e-4)
+
+
+def test_a_grounding_by_embedding_is_the_same_whatever_the_last_bits():
+    from ladev_lib.language.frames import NounPhrase
+    from ladev_lib.language.grounding import Grounder
+
+    catalog = load_catalog()
+    picks = set()
+    for jitter in (0.0, 1e-6, -1e-6):
+        vectors = {"the doohickey": [1.0, 0.0, 0.0], "gizmo": [0.8, 0.6, 0.0], "widget": [0.8, -0.6, 0.0]}
+        g = Grounder(catalog, _NoisyEmbedder(vectors, "gizmo", jitter), margin=0.0, min_similarity=0.5)
+        picks.add(g.ground(NounPhrase("the doohickey", "doohickey", ()), g.scene(["gizmo", "widget"])).object_id)
+    assert len(picks) == 1 and None not in picks
