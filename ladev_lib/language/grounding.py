@@ -214,6 +214,12 @@ class Grounder:
         colours_b = {_COLOUR_ALIASES.get(w, w) for w in b.modifiers if w in _COLOURS}
         if colours_a and colours_b and not colours_a & colours_b:
             return False, f"'{a.text}' -> '{b.text}' (another colour)", ga, gb
+        sizes_a, sizes_b = _sizes(a), _sizes(b)
+        if sizes_a and sizes_b and not sizes_a & sizes_b:
+            return False, f"'{a.text}' -> '{b.text}' (another size)", ga, gb
+        sides_a, sides_b = _positions(a), _positions(b)
+        if any(lx.OPPOSITE_POSITIONS[s] in sides_b for s in sides_a):
+            return False, f"'{_described(a)}' -> '{_described(b)}' (another position)", ga, gb
         why = self._qualifiers_differ(a, b, scene)
         if why is not None:
             return False, why, ga, gb
@@ -301,6 +307,29 @@ def _with_places(q: Qualifier) -> Qualifier:
 
 def _bare(phrase: NounPhrase) -> NounPhrase:
     return NounPhrase(phrase.text, phrase.head, phrase.modifiers, phrase.object_id)
+
+
+def _sizes(phrase: NounPhrase) -> frozenset[str]:
+    """The sizes a phrase states ("big" and "large" are one)."""
+    return frozenset(lx.SIZE_CLASSES[w] for w in phrase.modifiers if w in lx.SIZE_CLASSES)
+
+
+def _positions(phrase: NounPhrase) -> frozenset[str]:
+    """The positions a phrase places its object at, in its own words or in a relation that
+    locates it ("the left notebook", "the notebook on the right", "at the back"); a landmark's
+    own words ("next to the left plate") are the landmark's, not the object's."""
+    words = list(phrase.modifiers)
+    for q in phrase.qualifiers:
+        words += q.relation.split()
+        words += [w for place in q.places for w in place.split()]
+        # a landmark that is a part of a place ("at the right end (of the desk)") places it too
+        words += [w for p in q.landmarks if p.head in lx.POSITION_NOUNS for w in p.modifiers]
+    return frozenset(p for p in (lx.position_word(w) for w in words) if p in lx.OPPOSITE_POSITIONS)
+
+
+def _described(phrase: NounPhrase) -> str:
+    places = " ".join(f"{q.relation} {' '.join(q.places)}".strip() for q in phrase.qualifiers if q.places)
+    return f"{phrase.text} {places}".strip()
 
 
 def _descriptive(modifiers: Iterable[str]) -> frozenset[str]:

@@ -227,7 +227,22 @@ def position_word(word: str) -> str:
 
 
 SIDE_WORDS = frozenset({"left", "right"})
-"""Sides, which describe the noun after them ("the right slot") even where "right" is an adverb."""
+"""Sides, which describe the noun after them ("the right slot") even where "right" is an adverb,
+and name a place after a determiner ("the bowl on the right")."""
+
+OPPOSITE_POSITIONS: dict[str, str] = {
+    "left": "right", "right": "left", "front": "back", "back": "front", "top": "bottom", "bottom": "top",
+}
+"""Positions that exclude each other: "the left notebook" is not "the notebook on the right"."""
+
+SIZE_CLASSES: dict[str, str] = {
+    "small": "small", "little": "small", "mini": "small", "tiny": "small",
+    "large": "large", "big": "large", "huge": "large",
+}
+"""Size words by the size they state: "the large pot" is not "the small pot"."""
+
+POSITION_NOUNS = frozenset({"end", "side", "corner", "edge", "middle", "center", "centre"})
+"""Parts of a place ("the right end of the shelf"): nouns there, never verbs."""
 
 PARTICLES = frozenset({"up", "down", "over", "back", "away", "out", "off", "around", "aside"})
 """Verb particles: a particle followed by no object is not a relation ("put it down")."""

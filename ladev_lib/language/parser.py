@@ -29,6 +29,7 @@ from typing import Any
 
 from ladev_lib.catalog import Catalog, load_catalog
 from ladev_lib.catalog.catalog import normalize_name
+from ladev_lib.language import lexicon as lx
 from ladev_lib.language.clauses import (
     FREE,
     PLACEMENT,
@@ -145,6 +146,11 @@ def _mark_qualifiers(act: _Action) -> None:
                 g.qualifier = "destination"
             elif g.phrase == "of" and g.follows == "governed" and prev.qualifier == "object":
                 g.qualifier = "object"
+            elif (
+                g.follows == "governed" and prev.qualifier is None and prev.relation in PLACEMENT and prev.refs
+                and not g.refs and _names_a_position(g)
+            ):
+                g.qualifier = "destination"  # "in the drawer *at the back*": which part, or which one
 
 
 def _resolve_pronouns(clauses: list[Clause]) -> None:
@@ -460,6 +466,14 @@ class _Composer:
 
 
 _NOT_LOCATING = frozenset({"with", "for", "through", "across", "against", "around", "over", "along"})
+
+
+def _names_a_position(g: Governed) -> bool:
+    """A relation completed by a position alone ("at the back", "on the left")."""
+    words = [w for p in g.places for w in p.split()]
+    return bool(words) and all(
+        lx.position_word(w) in lx.OPPOSITE_POSITIONS or w in lx.POSITION_NOUNS for w in words
+    )
 
 
 def _locates(g: Governed) -> bool:

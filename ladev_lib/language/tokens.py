@@ -201,10 +201,12 @@ def _tag_word(
     if w in _STATIVE_PARTICIPLES and prev is not None and prev.kind in ("OBJ", "WORD"):
         return Token("ADV", w)  # "the bowl sitting on the cabinet": describes where it is
     describes = (after_det or (prev is not None and prev.kind == "REL")) and _starts_phrase(words, i + 1, index)
-    if w in lx.PARTICLES and not describes:
+    if w in lx.PARTICLES and not describes and not (after_det and w in lx.OPPOSITE_POSITIONS):
         return Token("PART", w)  # after a determiner or a relation word it describes the noun: "(the) back slot"
-    if w in lx.SIDE_WORDS and describes:
-        return Token("WORD", w)  # "the right slot": a side, not "right now"
+    if w in lx.SIDE_WORDS and (describes or after_det):
+        return Token("WORD", w)  # "the right slot", "on the right": a side, not "right now"
+    if w in lx.POSITION_NOUNS and prev is not None and prev.kind == "WORD" and prev.text in lx.SIDE_WORDS:
+        return Token("WORD", w)  # "the right end (of the shelf)": a part of a place, not a verb
     if is_adverb(w) and w not in lx.VERBS:
         return Token("ADV", w)
     if w in lx.NEGATIONS and not (w == "no" and after_det):

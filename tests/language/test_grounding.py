@@ -77,6 +77,15 @@ def test_free_phrases_compare_by_head_and_modifiers(grounder):
          "grab the black bowl beside the ramekin and set it on the plate", None, True),
         ("pick up the black bowl next to the ramekin and place it on the plate",
          "pick up the black bowl on the ramekin and place it on the plate", None, False),
+        # sizes and positions stated on both sides must agree, on objects the catalog does not know
+        ("pick up the large kettle", "lift the big kettle", None, True),
+        ("pick up the large kettle", "pick up the kettle", None, True),  # less specific, not different
+        ("pick up the large kettle", "pick up the tiny kettle", None, False),
+        ("pick up the left stapler", "grab the stapler on the left", None, True),
+        ("pick up the left stapler", "grab the stapler on the right", None, False),
+        ("pick up the stapler at the right end of the desk", "pick up the left stapler", None, False),
+        ("put the mug in the front drawer", "put the mug in the drawer at the back", None, False),
+        ("put the mug next to the left kettle", "put the mug next to the kettle on the left", None, True),
     ],
 )
 def test_validator_compares_grounded_frames(validator, original, candidate, scene, valid):

@@ -43,6 +43,7 @@ def test_ladev_validator_meets_targets_and_beats_similarity_alone(repo_root, val
         "paraphrase_pairs_open_vocab.csv",
         "paraphrase_pairs_open_vocab_holdout.csv",
         "paraphrase_pairs_open_vocab_holdout2.csv",
+        "paraphrase_pairs_open_vocab_holdout3.csv",
     ],
 )
 def test_every_meaning_change_is_caught(repo_root, validator, name):
