@@ -178,7 +178,10 @@ class Grounder:
             if not own & heads:
                 return False
         others = {w for o in scene if o.key != obj.key for n in o.names for w in n.split()}
+        sizes = {lx.SIZE_CLASSES[w] for w in words if w in lx.SIZE_CLASSES}
         for word in phrase.modifiers:
+            if word in lx.SIZE_CLASSES and sizes and lx.SIZE_CLASSES[word] not in sizes:
+                return False  # "the little bowl" is not the scene's "large bowl"
             if word in words or word in lx.SIZE_WORDS:
                 continue
             if obj.catalog_id is not None and word in _COLOURS:

@@ -24,7 +24,7 @@ Every verdict keeps both frames and the grounding of each phrase.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
@@ -155,6 +155,21 @@ def structure_mismatch(expected: InstructionParse, got: InstructionParse) -> str
     return None
 
 
+_SAME_OBJECT = "the same object is source and destination"
+
+
+def _settled_by_scene(frame: Frame, groundings: Sequence[Grounding | None]) -> Frame:
+    """A frame whose object and destination the catalog reads as one object ("the small bowl",
+    "the large bowl": the catalog's one bowl) but the scene grounds on two: understood."""
+    if not frame.reason or _SAME_OBJECT not in frame.reason:
+        return frame
+    obj, dest = groundings
+    if obj is None or dest is None or obj.object_id is None or dest.object_id is None or obj.object_id == dest.object_id:
+        return frame
+    rest = [r for r in frame.reason.split("; ") if not r.startswith(_SAME_OBJECT)]
+    return replace(frame, reason="; ".join(rest) or None)
+
+
 def frame_mismatch(
     expected: Frame, got: Frame, grounder: Grounder, scene: Sequence[SceneObject] | None
 ) -> tuple[str | None, list[Grounding | None], list[Grounding | None]]:
@@ -165,6 +180,7 @@ def frame_mismatch(
         g_exp[k] = grounder.ground(phrase, scene) if phrase is not None else None
     for k, phrase in enumerate((got.object, got.destination)):
         g_got[k] = grounder.ground(phrase, scene) if phrase is not None else None
+    expected, got = _settled_by_scene(expected, g_exp), _settled_by_scene(got, g_got)
     if not expected.ok:
         return f"original not understood: {expected.reason}", g_exp, g_got
     if not got.ok:
@@ -286,7 +302,9 @@ class ParaphraseValidator:
         )
         given = list(expected) if expected is not None else [None] * len(pairs)
         grounded = {s: self.grounder.scene(sorted(s)) for s in dict.fromkeys(scenes) if s}
-        ids = {s: frozenset(o.catalog_id for o in g if o.catalog_id) for s, g in grounded.items()}
+        # the reader reads in the scene's context even where no scene object is a catalog object
+        # (plain names stay as they are: they never match a catalog id)
+        ids = {s: frozenset(o.catalog_id or o.key for o in g) for s, g in grounded.items()}
         originals = list(
             dict.fromkeys((o, s) for (o, _), s, e in zip(pairs, scenes, given, strict=True) if e is None)
         )

@@ -86,6 +86,14 @@ def test_free_phrases_compare_by_head_and_modifiers(grounder):
         ("pick up the stapler at the right end of the desk", "pick up the left stapler", None, False),
         ("put the mug in the front drawer", "put the mug in the drawer at the back", None, False),
         ("put the mug next to the left kettle", "put the mug next to the kettle on the left", None, True),
+        # a scene settles what the catalog cannot: several catalog bottles, one bottle on this table
+        ("pick up the bottle", "grab the bottle", ["bottle", "sponge"], True),
+        ("pick up the bottle", "grab the sponge", ["bottle", "sponge"], False),
+        # two bowls the catalog reads as its one bowl are two objects of the scene, told by size
+        ("put the small bowl in the large bowl", "place the little bowl inside the big bowl",
+         ["small bowl", "large bowl", "fork"], True),
+        ("put the small bowl in the large bowl", "put the big bowl in the little bowl",
+         ["small bowl", "large bowl", "fork"], False),
     ],
 )
 def test_validator_compares_grounded_frames(validator, original, candidate, scene, valid):
