@@ -98,6 +98,43 @@ def _place_fixed(
     return None
 
 
+_TURNS = (0.0, 90.0, 45.0, 135.0)
+_MAX_TURN_STEPS = 20000
+
+
+def _turn_fixed(
+    requests: list[PlacementRequest], fixed: list[int], yaws: dict[int, float], grow: float
+) -> dict[int, float] | None:
+    """Yaws for the objects at given coordinates that clear each other (given yaws kept), or None."""
+    options: list[list[Footprint]] = []
+    for i in fixed:
+        r = requests[i]
+        assert r.x is not None and r.y is not None
+        turns = [yaws[i]] if r.yaw_deg is not None else [*_TURNS, yaws[i]]
+        options.append([footprint(r.obj, r.x, r.y, yaw, grow) for yaw in turns])
+    chosen: list[Footprint] = []
+    steps = 0
+
+    def search(k: int) -> bool:
+        nonlocal steps
+        if k == len(options):
+            return True
+        for fp in options[k]:
+            steps += 1
+            if steps > _MAX_TURN_STEPS:
+                return False
+            if not any(overlaps(fp, other) for other in chosen):
+                chosen.append(fp)
+                if search(k + 1):
+                    return True
+                chosen.pop()
+        return False
+
+    if not search(0):
+        return None
+    return {i: fp.yaw_deg for i, fp in zip(fixed, chosen, strict=True)}
+
+
 def place_objects(
     requests: list[PlacementRequest],
     workspace_x: tuple[float, float],
@@ -121,21 +158,18 @@ def place_objects(
     if clash is not None:
         # Objects at given coordinates with no given yaw may turn (square to the table, across it,
         # diagonally) to clear each other; only tried when the drawn yaws collide, so scenes that
-        # placed before place the same.
+        # placed before place the same. The turns are searched together (an earlier object may
+        # have to turn for a later one to fit), depth first, in request order.
+        turned = _turn_fixed(requests, fixed, yaws, grow)
+        if turned is None:
+            raise PlacementError(clash)
         placed.clear()
         prints.clear()
         for i in fixed:
             r = requests[i]
             assert r.x is not None and r.y is not None
-            turns = [yaws[i]] if r.yaw_deg is not None else [0.0, 90.0, 45.0, 135.0, yaws[i]]
-            for yaw in turns:
-                fp = footprint(r.obj, r.x, r.y, yaw, grow)
-                if not any(overlaps(fp, other) for other in prints):
-                    break
-            else:
-                raise PlacementError(clash)
-            placed[i] = Placed(r.obj, r.x, r.y, yaw)
-            prints.append(fp)
+            placed[i] = Placed(r.obj, r.x, r.y, turned[i])
+            prints.append(footprint(r.obj, r.x, r.y, turned[i], grow))
 
     # Largest footprints first: they are the hardest to fit.
     # Objects confined to a region go before the others of the same size class.

@@ -171,6 +171,13 @@ _GROUP = re.compile(
     r"(?=(?:a|an|one|1|the)\s)"
 )
 _BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]+?(?:es|s)\b")
+_UNITS = {
+    "degree", "deg", "cm", "mm", "centimeter", "centimetre", "millimeter", "millimetre", "percent", "second",
+    "step", "time", "minute", "inch", "meter", "metre", "episode", "trial", "run",
+}
+_ADJ = (
+    r"green|yellow|red|blue|pink|purple|orange|white|black|brown|small|large|big|little|light blue|dark|other"
+)
 _GENERIC = {"object", "item", "thing", "prop", "piece", "distractor", "random object", "other object"}
 
 
@@ -182,8 +189,35 @@ def expand_groups(text: str) -> str:
     the group); "the green one" after "2 blocks" -> "the green block". Counts
     of generic nouns ("3 objects: ...") are totals and stay.
     """
-    out = text
     heads: list[tuple[int, str]] = []
+    for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", text):
+        np_ = singular(m.group(2).strip())
+        if np_.split()[-1] in _UNITS or re.match(r"(?:more|other|random|extra)\b", np_):
+            continue  # "3 degrees", "2 more objects": not a group of objects
+        if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
+            heads.append((m.end(), np_))
+
+    def head_before(pos: int) -> str | None:
+        found = [h for p, h in heads if p <= pos]
+        return found[-1] if found else None
+
+    def one(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        return f"{m.group(1)} {m.group(2)} {head}"
+
+    def pair(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        return f"{m.group(1)} {m.group(2)} {head} and {m.group(3)} {m.group(4)} {head}"
+
+    # "2 cubes, a green and a yellow one": the first adjective shares the second's "one"
+    text = re.sub(
+        rf"\b(a|an|the|one|1)\s+({_ADJ})\s+and\s+(a|an|the|one|1)\s+({_ADJ})\s+(?:ones?|1)\b", pair, text
+    )
+    text = re.sub(rf"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:{_ADJ}))\s+(?:one|1)\b", one, text)
     # "those 2 blocks": the objects already named (by the task), not more of them
     text = _BACK_GROUP.sub(lambda m: " " + m.group(0).split(None, 1)[1] + "@", text)
     out = re.sub(r"\b[2-9]\s+(?:[a-z]+\s+)?[a-z]+@", " ", text)
@@ -192,29 +226,4 @@ def expand_groups(text: str) -> str:
         if np_ in _GENERIC or np_.split()[-1] in {w.split()[-1] for w in _GENERIC}:
             continue
         out = out[: m.start()] + " " + out[m.end():]
-    for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", out):
-        np_ = singular(m.group(2).strip())
-        if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
-            heads.append((m.end(), np_))
-    if not heads:
-        # the group was removed: its noun is still the antecedent of "a green one"
-        for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))@?(?![a-z])", text):
-            np_ = singular(m.group(2).strip())
-            if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
-                heads.append((0, np_))
-
-    def head_before(pos: int) -> str | None:
-        found = [h for p, h in heads if p <= pos]
-        return found[-1] if found else (heads[0][1] if heads else None)
-
-    def one(m: re.Match[str]) -> str:
-        head = head_before(m.start())
-        if head is None:
-            return m.group(0)
-        return f"{m.group(1)} {m.group(2)} {head}"
-
-    return re.sub(
-        r"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:green|yellow|red|blue|pink|purple|orange|white|black|brown|"
-        r"small|large|big|little|light blue|dark|other))\s+(?:one|1)\b",
-        one, out,
-    )
+    return out

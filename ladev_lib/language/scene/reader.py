@@ -100,12 +100,19 @@ class _Reader:
                 self.out.task_line = task.group(1).strip().rstrip(".")
                 self.out.recognised += 1
                 continue
+            # Each header governs the text after it, up to the next header ("Number and details of
+            # objects: ... Environmental setup: ..." on one line).
+            at = 0
+            parts: list[tuple[str, str | None]] = []
             for header in HEADERS.finditer(line):
+                parts.append((line[at:header.start()], domain_hint))
                 name = header.group(1)
                 domain_hint = "environment" if name.startswith(("env", "setup")) else "objects"
-            line = HEADERS.sub(" ", line)
-            for sentence in split_sentences(line):
-                self._sentence(sentence, domain_hint)
+                at = header.end()
+            parts.append((line[at:], domain_hint))
+            for part, hint in parts:
+                for sentence in split_sentences(part):
+                    self._sentence(sentence, hint)
         return self.out
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
