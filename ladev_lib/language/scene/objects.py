@@ -114,6 +114,9 @@ def find_region(text: str) -> tuple[str, str] | None:
     text = re.sub(r"\b(?:on|at|in|to|towards?|toward)\s+the\s+(?:side|corner|edge|part)?\b", " ", text)
     return region, text
 
+_JOINERS = {"and", "or", "plus", "also", "then"}
+
+
 def unknown_phrase(text: str) -> str | None:
     """An object phrase that names nothing in the catalog, where a phrase introduces one."""
     words = re.findall(r"@n@|@\w+@|[a-z][a-z0-9]*|\d+(?:\.\d+)?", text)
@@ -134,6 +137,9 @@ def unknown_phrase(text: str) -> str | None:
             end = i
             break
         if w in FILLERS or re.fullmatch(r"\d+(?:\.\d+)?", w):
+            if not run and w in ("the", "this", "that", "these", "those", "its", "their"):
+                introduced = False  # "2 - the model confuses them": a determiner between
+                continue
             if not run:
                 # introduced as a new object: "a/an/my X", "2 X", "add X" (not "the X", a reference)
                 if w in ("a", "an", "another", "add", "my", "our", "spawn") or re.fullmatch(r"\d+", w):
@@ -147,7 +153,13 @@ def unknown_phrase(text: str) -> str | None:
     # the phrase must be all the clause names: nothing but fillers after it
     if any(w not in FILLERS and not w.startswith("@") and w not in STOP_PREPOSITIONS for w in words[end:]):
         return None
-    bare_item = len(content) == len(run) and len(words) <= len(run) + 1 and len(run) <= 2
+    # a bare item is a list entry ("pear, plum", "- softball"), not chat ("this time", "nothing fancy",
+    # "no idea why"): nothing but a list joiner beside it
+    others = [w for w in words if w not in run and not w.startswith("@")]
+    bare_item = (
+        len(content) == len(run) and len(words) <= len(run) + 1 and len(run) <= 2
+        and all(w in _JOINERS for w in others)
+    )
     if not introduced and not bare_item:
         return None
     return " ".join(run)

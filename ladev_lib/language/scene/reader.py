@@ -47,6 +47,7 @@ _RANDOM_GROUP = re.compile(
     r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
 )
+_PLURAL_VERB = r"are|go|sit|stand|lie|stay|belong"
 _MEMBER = re.compile(
     r"\b(?:\d+|one|some)\s+of\s+(?:them|which|those|these|the \d+)\b|\bamong\s+(?:them|which|those)\b|"
     r"\binclud(?:e|es|ing)\b|\bone being\b|\bof which\b"
@@ -88,6 +89,7 @@ class _Reader:
         self._listy = True
         self._sentence_randoms = 0
         self._sentence_first = 0
+        self._sentence_text = ""
 
     def read(self, text: str) -> _Reading:
         domain_hint: str | None = None
@@ -136,6 +138,7 @@ class _Reader:
         # "objects: 2" would be cut apart at the colon below: read it first.
         self._sentence_randoms = 0
         self._sentence_first = len(self.out.objects)
+        self._sentence_text = sentence
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
             qualifier = re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()])
@@ -208,6 +211,22 @@ class _Reader:
             self.out.object_set = "simpler"
 
     # -- objects -----------------------------------------------------------------
+    def _distributes(self, clause: str, found: list[_ObjectOp]) -> bool:
+        """Whether a position said after the last of coordinated objects is said of all of them.
+
+        "a bowl and a mug go on the left" (a plural verb), "a padlock and a scrub sponge,
+        both near the center", or a sentence that is only the pair ("a marker and a fork at
+        the front"); not "a coke can, an apple and a sponge on the right" in a longer list.
+        """
+        earlier = self.out.objects[self._sentence_first:]
+        if len(found) != 1 or not earlier or any(o.position is not None for o in earlier):
+            return False
+        if re.search(rf"\b(?:{_PLURAL_VERB}|both|all|together|side by side)\b", clause):
+            return True
+        names = self.vocab.name_pattern.pattern
+        pair = rf"(?:a|an|the|\d+)\s+{names}\s+and\s+(?:a|an|the|\d+)\s+{names}\b"
+        return len(earlier) == 1 and re.match(rf"\s*{pair}", self._sentence_text) is not None
+
     def _objects(self, clause: str, last: _ObjectOp | None) -> _ObjectOp | None:
         text = f" {clause} "
         position: dict[str, Any] | None = None
@@ -299,6 +318,12 @@ class _Reader:
                 last = target
                 continue
             qty = quantity(before)
+            if (
+                m.group(0) not in self.vocab.canonical
+                and name != m.group(0)
+                and not re.search(r"(?:^|\s)\d+\s+(?:[a-z]+\s+)?$|\b(?:some|several|many|few)\s+$", before)
+            ):
+                continue  # "my robot keeps failing on aubergines": a kind of object, not one on the table
             for _ in range(qty):
                 found.append(_ObjectOp(name))
         if matches and not found:
@@ -324,12 +349,19 @@ class _Reader:
             self._sentence_randoms -= taken
             self.out.randoms -= taken
         if found:
+            if position is not None and self._distributes(clause, found):
+                for obj in self.out.objects[self._sentence_first:]:
+                    if obj.position is None:
+                        obj.position = dict(position)
             if position is not None:
                 found[-1].position = position
             self.out.objects.extend(found)
             self.out.recognised += 1
             return found[-1]
-        if position is not None and re.search(r"\b(?:all|both|each|all of them|both of them)\b", text):
+        if position is not None and (
+            re.search(r"\b(?:all|both|each|all of them|both of them|together|side by side)\b", text)
+            or re.search(rf"^\s*(?:2|{_PLURAL_VERB})\b", clause)
+        ):
             # "a pepsi can and a sprite can, all lined up at the front": every object of the sentence
             for obj in self.out.objects[self._sentence_first:]:
                 if obj.position is None:
