@@ -179,7 +179,9 @@ def singular(phrase: str) -> str:
 
 
 _GROUP = re.compile(
-    r"\b(?P<n>[2-9])\s+(?P<np>(?:[a-z]+\s+)?[a-z]+?)(?:es|s)\b(?P<sep>\s*(?:,|:|-|\()\s*)"
+    r"\b(?P<n>[2-9])\s+(?P<np>(?:[a-z]+\s+)?[a-z]+?)(?:es|s)\b"
+    r"(?:\s+(?:on|at|in)\s+the\s+(?:table|scene|workspace|tabletop))?"  # "4 cups on the table: the ..."
+    r"(?P<sep>\s*(?:,|:|-|\()\s*)"
     r"(?=(?:a|an|one|1|the)\s)"
 )
 _BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]+?(?:es|s)\b")

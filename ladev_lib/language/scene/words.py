@@ -132,13 +132,13 @@ class Vocabulary:
             names.add(display)
             for s in o.get("synonyms", ()) or ():
                 names.add(_norm_name(str(s)))
+            ids[str(o["id"]).lower()] = display
+            if o.get("category"):
+                categories.add(str(o["category"]).replace("_", " "))
         for n in list(names):
             spaced = re.sub(r"(?<=\d)(?=[a-z])", " ", n)
             if spaced != n:
                 names.add(spaced)
-            ids[str(o["id"]).lower()] = display
-            if o.get("category"):
-                categories.add(str(o["category"]).replace("_", " "))
         canonical = {_digits(n): n for n in names}
         for form, name in list(canonical.items()):
             if SPLIT_WORDS.search(form):
