@@ -189,7 +189,7 @@ _UNITS = {
     "degree", "deg", "cm", "mm", "centimeter", "centimetre", "millimeter", "millimetre", "percent", "second",
     "step", "time", "minute", "inch", "meter", "metre", "episode", "trial", "run",
 }
-_ADJ = (
+ADJECTIVES = (
     r"green|yellow|red|blue|pink|purple|orange|white|black|brown|small|large|big|little|light blue|dark|other"
 )
 _GENERIC = {"object", "item", "thing", "prop", "piece", "distractor", "random object", "other object"}
@@ -229,9 +229,9 @@ def expand_groups(text: str) -> str:
 
     # "2 cubes, a green and a yellow one": the first adjective shares the second's "one"
     text = re.sub(
-        rf"\b(a|an|the|one|1)\s+({_ADJ})\s+and\s+(a|an|the|one|1)\s+({_ADJ})\s+(?:ones?|1)\b", pair, text
+        rf"\b(a|an|the|one|1)\s+({ADJECTIVES})\s+and\s+(a|an|the|one|1)\s+({ADJECTIVES})\s+(?:ones?|1)\b", pair, text
     )
-    text = re.sub(rf"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:{_ADJ}))\s+(?:one|1)\b", one, text)
+    text = re.sub(rf"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:{ADJECTIVES}))\s+(?:one|1)\b", one, text)
     # "those 2 blocks": the objects already named (by the task), not more of them
     text = _BACK_GROUP.sub(lambda m: " " + m.group(0).split(None, 1)[1] + "@", text)
     out = re.sub(r"\b[2-9]\s+(?:[a-z]+\s+)?[a-z]+@", " ", text)

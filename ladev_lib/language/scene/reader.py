@@ -21,6 +21,7 @@ from ladev_lib.language.scene.environment import (
 )
 from ladev_lib.language.scene.instruction import parse_instruction
 from ladev_lib.language.scene.objects import (
+    ADJECTIVES,
     canonical_name,
     expand_groups,
     find_region,
@@ -43,6 +44,7 @@ from ladev_lib.language.scene.words import (
     split_sentences,
 )
 
+_NOT_OBJECTS = r"(?:examples?|times?|questions?|versions?|variants?|tests?|ideas?|tries|try|attempts?|runs?|trials?|episodes?|scenes?|steps?)\b"
 _RANDOM_GROUP = re.compile(
     r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
@@ -250,6 +252,8 @@ class _Reader:
         # "2 other balls", "3 fruits at random": free choices, whatever the noun
         for m in list(_RANDOM_GROUP.finditer(text)):
             noun_at = m.start("noun") if m.group("noun") else m.start("noun2")
+            if re.match(_NOT_OBJECTS, text[noun_at:]):
+                continue  # "one more example", "2 more tries": not objects
             if self.vocab.name_pattern.match(text, noun_at) or (m.group("noun") or "").split()[0:1] in (
                 ["objects"], ["object"], ["items"], ["item"], ["things"], ["thing"],
             ):
@@ -424,6 +428,11 @@ def read_description(
     elif found.statement and (retry := _task_in_scene(found.statement, reading, vocab)) is not None:
         out["task"] = retry  # "pick up bottle" in a scene with one bottle
         stated = retry
+    elif (retry := next(
+        (t for c in found.candidates if (t := _task_in_scene(c, reading, vocab)) is not None), None
+    )) is not None:
+        out["task"] = retry  # "the robot moves the green brick near the pink one", in its scene
+        stated = retry
     elif found.statement or reading.task_line:
         what = found.statement or reading.task_line
         out["error"] = (
@@ -478,10 +487,16 @@ def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | N
 
 def _task_in_scene(statement: str, reading: _Reading, vocab: Vocabulary) -> dict[str, Any] | None:
     """A task statement read again with the described objects as its scene ("the bottle" = the one there)."""
-    by_name = {name: cid for cid, name in vocab.ids.items()}
+    by_name = {**vocab.name_ids, **{name: cid for cid, name in vocab.ids.items()}}
     ids = [by_name[o.mention] for o in reading.objects if o.mention in by_name]
     if not ids:
         return None
+    # "move the green brick near the pink one": 'one' is the other object's noun
+    statement = statement.lower()
+    named = vocab.name_pattern.search(statement)
+    if named is not None:
+        head = re.sub(rf"^(?:(?:{ADJECTIVES})\s+)+", "", canonical_name(vocab, named.group(0)))
+        statement = re.sub(rf"\b((?:the|a|an)\s+(?:{ADJECTIVES}))\s+one\b", rf"\1 {head}", statement)
     frame = read_instruction(statement, scene_objects=ids)
     if frame.task is None or frame.task == "other" or frame.object is None or not frame.ok:
         return None

@@ -85,6 +85,29 @@ _PLACE_WORDS = frozenset(
 _SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—")
 
 
+INLINE_LABEL = re.compile(
+    r"\s*[(,]?\s*(?:that|this)(?:'s|s|\s+is)\s+(?:the\s+)?(?:robot'?s?\s+|arm'?s?\s+|its\s+)?"
+    r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)\b\s*\)?",
+    re.IGNORECASE,
+)
+_GOES = re.compile(
+    r"^\s*(?P<x>.+?)\s+(?:goes|belongs|should\s+go|needs\s+to\s+go|has\s+to\s+go|must\s+go|ends?\s+up)\s+"
+    r"(?P<rel>on\s+top\s+of|onto|on|into|inside|in|near|next\s+to|beside)\s+(?P<y>.+)$",
+    re.IGNORECASE,
+)
+_VERBLESS = re.compile(r"^\s*(?P<x>(?:the\s+)?[a-z0-9' ]{2,40}?)\s+(?P<rel>into|onto)\s+(?P<y>(?:the\s+)?[a-z0-9' ]{2,40}?)\s*$", re.IGNORECASE)
+
+
+def _as_command(clause: str) -> str:
+    """'the brick goes on the towel' / 'plum into the cup' -> 'put the brick on the towel' (else as given)."""
+    m = _GOES.match(clause) or _VERBLESS.match(clause)
+    if m is None:
+        return clause
+    rel = re.sub(r"\s+", " ", m.group("rel").lower())
+    verb = "move" if rel in ("near", "next to", "beside") else "put"
+    return f"{verb} {m.group('x')} {rel} {m.group('y')}"
+
+
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
 _NEW_CLAUSE = re.compile(r",?\s*(?:and\s+|but\s+|while\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE)
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
@@ -110,6 +133,9 @@ class FoundTask:
     rest: str
     statement: str | None = None
     statements: list[TaskStatement] = field(default_factory=list)
+    candidates: list[str] = field(default_factory=list)
+    """Statements marked as the task that need the scene to be read ("the robot moves the green
+    brick near the pink one", "plum into the cup"), last first; the reader retries them in its scene."""
 
 
 def _segments(text: str) -> list[tuple[int, int]]:
@@ -259,6 +285,30 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
                 # a labelled task that is none of the four forms is still the task statement
                 found.append(TaskStatement(s, e, seg[marked:].strip(), reader(seg[marked:].strip()), 0))
                 continue
+            if seg[marked:].strip():
+                # about the robot, but only its scene can say which objects: read again there
+                found.append(TaskStatement(s, e, _normalise(seg[marked:].strip()), reader(""), -2))
+                continue
+        inline = INLINE_LABEL.search(seg)
+        if inline is not None and seg[: inline.start()].strip():
+            # "the small brick goes on the towel (that's the task), not the pink one"
+            said = _as_command(seg[: inline.start()])
+            frame = _read(said, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, said.strip(), frame, 2))
+            else:
+                found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
+            continue
+        verbless = _VERBLESS.match(seg)
+        if verbless is not None and IMPERATIVE.match(seg) is None:
+            # "Plum into the cup.": a task said without its verb
+            said = _as_command(seg)
+            frame = _read(said, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, said, frame, 1))
+            else:
+                found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
+            continue
         m = IMPERATIVE.match(seg)
         if m is None:
             continue
@@ -307,16 +357,18 @@ def find_task(
     strong = [s for s in statements if s.strength == 2]
     weak = [s for s in statements if s.strength == 1]
     unreadable = [s for s in statements if s.strength == 0]
+    maybe = [s for s in statements if s.strength == -2]
     chosen = strong[-1] if strong else (weak[-1] if weak else None)
-    removed = [s for s in statements if s.strength in (2, 0, -1)] + ([chosen] if chosen is not None else [])
+    removed = [s for s in statements if s.strength in (2, 0, -1, -2)] + ([chosen] if chosen is not None else [])
     rest = text
     spans = {(s.start, s.end): s.replacement for s in removed}
     for (a, b), keep in sorted(spans.items(), reverse=True):
         rest = rest[:a] + keep + rest[b:]
+    candidates = [s.text for s in reversed(maybe)]
     if chosen is None:
         if unreadable:
-            return FoundTask(None, rest, unreadable[-1].text, statements)
-        return FoundTask(None, rest, None, statements)
+            return FoundTask(None, rest, unreadable[-1].text, statements, candidates)
+        return FoundTask(None, rest, None, statements, candidates)
     names = names or {}
     frame = chosen.frame
     task = {
@@ -324,4 +376,4 @@ def find_task(
         "source": _mention(frame.object, names),
         "target": _mention(frame.destination, names) if frame.task != "pick_up" else None,
     }
-    return FoundTask(task, rest, chosen.text, statements)
+    return FoundTask(task, rest, chosen.text, statements, candidates)

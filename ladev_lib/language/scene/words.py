@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 # -- numbers -----------------------------------------------------------------------
@@ -121,17 +121,22 @@ class Vocabulary:
     ids: dict[str, str]
     """catalog id -> display name (ids may appear verbatim in text)."""
     categories: set[str]
+    name_ids: dict[str, str] = field(default_factory=dict)
+    """Name or synonym as the catalog writes it (normalised) -> catalog id."""
 
     @classmethod
     def from_objects(cls, objects: Iterable[Mapping[str, Any]]) -> Vocabulary:
         names: set[str] = set()
         ids: dict[str, str] = {}
         categories: set[str] = set()
+        name_ids: dict[str, str] = {}
         for o in objects:
             display = _norm_name(str(o["name"]))
             names.add(display)
+            name_ids.setdefault(display, str(o["id"]).lower())
             for s in o.get("synonyms", ()) or ():
                 names.add(_norm_name(str(s)))
+                name_ids.setdefault(_norm_name(str(s)), str(o["id"]).lower())
             ids[str(o["id"]).lower()] = display
             if o.get("category"):
                 categories.add(str(o["category"]).replace("_", " "))
@@ -143,7 +148,7 @@ class Vocabulary:
         for form, name in list(canonical.items()):
             if SPLIT_WORDS.search(form):
                 canonical[form.replace(" ", "~")] = name
-        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories)
+        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories, name_ids)
 
     @property
     def name_pattern(self) -> re.Pattern[str]:
