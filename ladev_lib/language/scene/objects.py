@@ -136,7 +136,7 @@ def unknown_phrase(text: str) -> str | None:
         if run and (w in STOP_PREPOSITIONS or w in ("that", "which", "who", "is", "are")):
             end = i
             break
-        if w in FILLERS or re.fullmatch(r"\d+(?:\.\d+)?", w):
+        if w in FILLERS or w in ("my", "our") or re.fullmatch(r"\d+(?:\.\d+)?", w):
             if not run and w in ("the", "this", "that", "these", "those", "its", "their"):
                 introduced = False  # "2 - the model confuses them": a determiner between
                 continue
@@ -162,6 +162,8 @@ def unknown_phrase(text: str) -> str | None:
     )
     if not introduced and not bare_item:
         return None
+    if not introduced and re.search(r"[a-z]{3}(?<!s)s$", run[-1]):
+        return None  # "something with tools": a kind of object, not one on the table
     return " ".join(run)
 
 
@@ -184,7 +186,7 @@ _GROUP = re.compile(
     r"(?P<sep>\s*(?:,|:|-|\()\s*)"
     r"(?=(?:a|an|one|1|the)\s)"
 )
-_BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]+?(?:es|s)\b")
+_BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]{2,}?(?:es|s)\b")
 _UNITS = {
     "degree", "deg", "cm", "mm", "centimeter", "centimetre", "millimeter", "millimetre", "percent", "second",
     "step", "time", "minute", "inch", "meter", "metre", "episode", "trial", "run",

@@ -193,6 +193,17 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
             t = re.sub(rf"(?<![a-z0-9]){re.escape(cid)}(?![a-z0-9])", display, t)
     t = re.sub(r"(?<=[a-z])-(?=[a-z0-9])|(?<=[0-9])-(?=[a-z])", " ", t)
     t = re.sub(r"[ \t]+", " ", _digits(t.replace("_", " ")))
+    # "a box of jell o gelatin": the catalog's "gelatin box" / "box of gelatin", brand words dropped
+    def container_of(m: re.Match[str]) -> str:
+        kind, words = m.group(1), m.group(2).split()
+        for k in range(len(words)):
+            rest = " ".join(words[k:])
+            for form in (f"{rest} {kind}", f"{kind} of {rest}"):
+                if form in vocab.canonical:
+                    return form
+        return m.group(0)
+
+    t = re.sub(r"\b(box|can|bottle|jar|tin|pack|packet|carton|bag) of ((?:[a-z]+ ){0,2}[a-z]+)\b", container_of, t)
     # Names such as 'cup with a handle' must survive clause splitting at 'with'.
     for name in vocab.names:
         if "~" in name:
