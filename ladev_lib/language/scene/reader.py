@@ -33,6 +33,7 @@ from ladev_lib.language.scene.objects import (
 from ladev_lib.language.scene.statements import find_task
 from ladev_lib.language.scene.words import (
     COUNT_TOTAL,
+    FILLERS,
     HEADERS,
     KEYED_COUNT,
     NUM,
@@ -49,6 +50,7 @@ _RANDOM_GROUP = re.compile(
     r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
 )
+_RELATION_WORDS = r"right next to|next to|near|beside|by|close to|behind|in front of|left of|right of"
 _PLURAL_VERB = r"are|go|sit|stand|lie|stay|belong"
 _MEMBER = re.compile(
     r"\b(?:\d+|one|some)\s+of\s+(?:them|which|those|these|the \d+)\b|\bamong\s+(?:them|which|those)\b|"
@@ -83,9 +85,13 @@ class _Reading:
 
 
 class _Reader:
-    def __init__(self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]]) -> None:
+    def __init__(
+        self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]], task_object: str | None = None
+    ) -> None:
         self.vocab = vocab
         self.slots = slots
+        self.task_object = task_object
+        """The stated task's object: what "it" refers to before any object is described."""
         self.out = _Reading()
         self._previous_domain: str | None = None
         self._listy = True
@@ -213,6 +219,13 @@ class _Reader:
             self.out.object_set = "simpler"
 
     # -- objects -----------------------------------------------------------------
+    def _same(self, a: str | None, b: str | None) -> bool:
+        """Two mentions of one catalog object ("7up" and "7up can")."""
+        if a is None or b is None:
+            return False
+        ids = self.vocab.name_ids
+        return a == b or (a in ids and ids.get(a) == ids.get(b))
+
     def _distributes(self, clause: str, found: list[_ObjectOp]) -> bool:
         """Whether a position said after the last of coordinated objects is said of all of them.
 
@@ -284,6 +297,21 @@ class _Reader:
             text = text.replace(key, " ")
             consumed = True
 
+        # "next to it": the object described last (or the task's object, before any is)
+        antecedent = self.out.objects[-1].mention if self.out.objects else self.task_object
+        if antecedent:
+            text = re.sub(
+                rf"\b({_RELATION_WORDS})\s+(?:it|that one)\b", lambda m: f"{m.group(1)} the {antecedent}", text
+            )
+        # "a towel that lies in the centre": the relative clause places the towel, not the subject
+        relative: tuple[str, dict[str, Any]] | None = None
+        rel_m = re.search(
+            rf"(?P<name>{self.vocab.name_pattern.pattern})\s+(?:that|which)\s+(?:is|lies|sits|stands|rests)\b(?P<rest>.*)$",
+            text,
+        )
+        if rel_m is not None and (where := find_region(rel_m.group("rest"))) is not None:
+            relative = (canonical_name(self.vocab, rel_m.group("name")), {"region": where[0]})
+            text = text[: rel_m.end("name")] + " "
         # Relations to another object: "near the bowl", "left of the plate".
         rel = find_relation(self.vocab, text)
         if rel is not None:
@@ -297,6 +325,26 @@ class _Reader:
             position = position or {"region": region}
             consumed = True
 
+        if relative is not None:
+            name, where_pos = relative
+            same = [o for o in self.out.objects if self._same(o.mention, name)]
+            if same:
+                if same[-1].position is None:
+                    same[-1].position = where_pos
+            else:
+                self.out.objects.append(_ObjectOp(name, where_pos))
+            if position is not None and position.get("reference") and self._same(position["reference"], name):
+                text = text.replace(rel_m.group("name") if rel_m else name, " ", 1)  # the reference is not the subject
+        # "the can on the left": an object described before, by its head noun
+        if position is not None and not self.vocab.name_pattern.search(text):
+            head = re.search(r"\bthe\s+([a-z]+)\b", text)
+            if head is not None and head.group(1) not in FILLERS:
+                word = head.group(1)
+                same = [o for o in self.out.objects if o.mention and o.mention.split()[-1] in (word, singular(word))]
+                if len({o.mention for o in same}) == 1 and same[-1].position is None:
+                    same[-1].position = position
+                    self.out.recognised += 1
+                    return same[-1]
         # Named objects, with quantities ("2 apples"). A definite mention of an
         # object already described ("the bowl in the middle", "towel: back") is
         # that object again, not another one.
@@ -305,7 +353,7 @@ class _Reader:
         for m in matches:
             name = canonical_name(self.vocab, m.group(0))
             before = text[: m.start()]
-            earlier = [o for o in self.out.objects if o.mention == name]
+            earlier = [o for o in self.out.objects if self._same(o.mention, name)]
             definite = re.search(r"\b(?:the|that|this|its|both|said|same)\s+(?:\w+\s+)?$", before) is not None
             bare_update = (
                 not re.search(r"\b(?:a|an|another|one|\d+|add|plus|and|also)\s+(?:\w+\s+)?$", before)
@@ -401,7 +449,8 @@ def read_description(
     found = find_task(description or "", vocab.ids)
     text, dropped = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
-    reading = _Reader(vocab, slots).read(protected)
+    task_object = found.task.get("source") if found.task is not None else None
+    reading = _Reader(vocab, slots, task_object).read(protected)
     for name in dropped:
         canonical = canonical_name(vocab, name)
         idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]
