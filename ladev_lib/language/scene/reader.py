@@ -86,11 +86,12 @@ class _Reading:
 
 class _Reader:
     def __init__(
-        self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]], task_object: str | None = None
+        self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]], task_objects: tuple[str, ...] = ()
     ) -> None:
         self.vocab = vocab
         self.slots = slots
-        self.task_object = task_object
+        self.task_objects = task_objects
+        self.task_object = task_objects[0] if task_objects else None
         """The stated task's object: what "it" refers to before any object is described."""
         self.out = _Reading()
         self._previous_domain: str | None = None
@@ -126,6 +127,12 @@ class _Reader:
         return self.out
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
+        if "@swap@" in sentence:
+            placed = [o for o in self.out.objects if o.position is not None]
+            if len(placed) >= 2:
+                placed[-2].position, placed[-1].position = placed[-1].position, placed[-2].position
+            sentence = sentence.replace("@swap@", " ")
+            self.out.recognised += 1
         self._object_set(sentence)
         # An unknown noun is an object only where the sentence lists objects (names a catalog
         # object, counts objects or adds one), not in chat around the scene.
@@ -345,6 +352,13 @@ class _Reader:
                     same[-1].position = position
                     self.out.recognised += 1
                     return same[-1]
+                task_named = [t for t in self.task_objects if t.split()[-1] in (word, singular(word))]
+                if not same and len(set(task_named)) == 1:
+                    # "the can on the left": the task's can, not described before
+                    obj = _ObjectOp(task_named[0], position)
+                    self.out.objects.append(obj)
+                    self.out.recognised += 1
+                    return obj
         # Named objects, with quantities ("2 apples"). A definite mention of an
         # object already described ("the bowl in the middle", "towel: back") is
         # that object again, not another one.
@@ -449,8 +463,10 @@ def read_description(
     found = find_task(description or "", vocab.ids)
     text, dropped = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
-    task_object = found.task.get("source") if found.task is not None else None
-    reading = _Reader(vocab, slots, task_object).read(protected)
+    task_objects = tuple(
+        str(found.task[k]) for k in ("source", "target") if found.task is not None and found.task.get(k)
+    )
+    reading = _Reader(vocab, slots, task_objects).read(protected)
     for name in dropped:
         canonical = canonical_name(vocab, name)
         idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]

@@ -63,7 +63,8 @@ AGENT_DOES = re.compile(
 WANT_TO = re.compile(
     rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
     rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)"
-    rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)",
+    rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)"
+    rf"|\b(?:can|could|will|does|do)\s+(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator|it)\s+(?:still\s+|reliably\s+|actually\s+)?(?={_VERB}\b)",  # "can the arm pick up ...?"
     re.IGNORECASE,
 )
 BACK_LABEL = re.compile(
@@ -108,6 +109,7 @@ def _as_command(clause: str) -> str:
     return f"{verb} {m.group('x')} {rel} {m.group('y')}"
 
 
+_INTRODUCES = re.compile(r"\b(?:a|an|some|\d+|one|two|three|four|five|six|seven)\s", re.IGNORECASE)
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
 _NEW_CLAUSE = re.compile(r",?\s*(?:and\s+|but\s+|while\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE)
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
@@ -359,7 +361,9 @@ def find_task(
     unreadable = [s for s in statements if s.strength == 0]
     maybe = [s for s in statements if s.strength == -2]
     chosen = strong[-1] if strong else (weak[-1] if weak else None)
-    removed = [s for s in statements if s.strength in (2, 0, -1, -2)] + ([chosen] if chosen is not None else [])
+    # a statement to read in the scene leaves the text unless it introduces objects ("set up a table with a ...")
+    maybe_out = [s for s in maybe if not _INTRODUCES.search(s.text)]
+    removed = [s for s in statements if s.strength in (2, 0, -1)] + maybe_out + ([chosen] if chosen is not None else [])
     rest = text
     spans = {(s.start, s.end): s.replacement for s in removed}
     for (a, b), keep in sorted(spans.items(), reverse=True):
