@@ -107,6 +107,20 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
         rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<name>{names})(?=\s*(?:$|[,;.!]|\band\b|\breplace))",
         take_out, out,
     )
+
+    def take_out_by_word(m: re.Match[str]) -> str:
+        # "remove the windex": the one object named before whose name has that word
+        word = m.group("word")
+        said = {n.group(0) for n in vocab.name_pattern.finditer(out[: m.start()]) if word in n.group(0).split()}
+        if len(said) != 1:
+            return m.group(0)
+        dropped.append(said.pop())
+        return " "
+
+    out = re.sub(
+        rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<word>[a-z0-9]+)(?=\s*(?:$|[,;.!]|\band\b))",
+        take_out_by_word, out,
+    )
     return out, dropped
 
 

@@ -111,7 +111,9 @@ def _as_command(clause: str) -> str:
 
 _INTRODUCES = re.compile(r"\b(?:a|an|some|\d+|one|two|three|four|five|six|seven)\s", re.IGNORECASE)
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
-_NEW_CLAUSE = re.compile(r",?\s*(?:and\s+|but\s+|while\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE)
+_NEW_CLAUSE = re.compile(
+    r",?\s*(?:and\s+|but\s+|while\s+|whereas\s+|when\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE
+)
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
 
 
@@ -162,7 +164,7 @@ def _is_place(phrase: NounPhrase | None) -> bool:
 def _cuts(candidate: str) -> list[tuple[str, int]]:
     """The candidate, then shorter versions cut at clause boundaries (first boundary last), with their lengths."""
     out = [(candidate, len(candidate))]
-    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|so that|so|then|with|because)\s+|\(|\)", candidate))):
+    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|whereas|when|so that|so|then|with|because)\s+|\(|\)", candidate))):
         head = candidate[: m.start()]
         if head.strip() and head.strip() not in [c.strip() for c, _ in out]:
             out.append((head, m.start()))
