@@ -38,6 +38,7 @@ from ladev_lib.language.scene.words import (
     KEYED_COUNT,
     NUM,
     RANDOM_QUALIFIER,
+    STOP_PREPOSITIONS,
     Vocabulary,
     normalize_text,
     protect_coordinates,
@@ -51,6 +52,11 @@ _RANDOM_GROUP = re.compile(
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
 )
 _RELATION_WORDS = r"right next to|next to|near|beside|by|close to|behind|in front of|left of|right of"
+_AFTER_NOUN = frozenset(
+    {"and", "or", "plus", "that", "which", "too", "also", "somewhere", "anywhere", "as", "please", "is", "are",
+     "should", "will", "of", "then", "there", "here", "lying", "sitting", "standing", "placed"}
+)
+"""Words that may follow an object noun (a category word followed by any other is a modifier)."""
 _PLURAL_VERB = r"are|go|sit|stand|lie|stay|belong"
 _MEMBER = re.compile(
     r"\b(?:\d+|one|some)\s+of\s+(?:them|which|those|these|the \d+)\b|\bamong\s+(?:them|which|those)\b|"
@@ -398,6 +404,9 @@ class _Reader:
         if not found:
             for m in self.vocab.category_pattern.finditer(text):
                 cat = m.group("cat")
+                after = re.match(r"\s+([a-z]+)", text[m.end():])
+                if after is not None and after.group(1) not in STOP_PREPOSITIONS | _AFTER_NOUN:
+                    continue  # "a fruit test", "a tool demo": the category names another noun's kind
                 qty = quantity(m.group(0)[: m.start("cat") - m.start()])
                 found.extend(_ObjectOp(cat) for _ in range(qty))
             text_wo_names = self.vocab.category_pattern.sub(" @n@ ", text_wo_names)
