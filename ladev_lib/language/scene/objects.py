@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from ladev_lib.language.scene.words import FILLERS, SCENE_NOUNS, STOP_PREPOSITIONS, Vocabulary
+from ladev_lib.language.scene.words import FILLERS, NON_OBJECT_NOUNS, SCENE_NOUNS, STOP_PREPOSITIONS, Vocabulary
 
 
 def canonical_name(vocab: Vocabulary, matched: str) -> str:
@@ -119,6 +119,7 @@ _JOINERS = {"and", "or", "plus", "also", "then"}
 
 def unknown_phrase(text: str) -> str | None:
     """An object phrase that names nothing in the catalog, where a phrase introduces one."""
+    text = re.sub(r"\([^()]*\)", " ", text)  # "my stapler (just clutter)": an aside
     words = re.findall(r"@n@|@\w+@|[a-z][a-z0-9]*|\d+(?:\.\d+)?", text)
     run: list[str] = []
     introduced = False
@@ -148,7 +149,7 @@ def unknown_phrase(text: str) -> str | None:
             end = i
             break
         run.append(w)
-    if not run or len(run) > 3 or len("".join(run)) < 3:
+    if not run or len(run) > 3 or len("".join(run)) < 3 or run[-1] in NON_OBJECT_NOUNS:
         return None
     # the phrase must be all the clause names: nothing but fillers after it
     if any(w not in FILLERS and not w.startswith("@") and w not in STOP_PREPOSITIONS for w in words[end:]):

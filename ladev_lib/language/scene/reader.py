@@ -36,6 +36,7 @@ from ladev_lib.language.scene.words import (
     FILLERS,
     HEADERS,
     KEYED_COUNT,
+    NON_OBJECT_NOUNS,
     NUM,
     RANDOM_QUALIFIER,
     STOP_PREPOSITIONS,
@@ -46,7 +47,6 @@ from ladev_lib.language.scene.words import (
     split_sentences,
 )
 
-_NOT_OBJECTS = r"(?:examples?|times?|questions?|versions?|variants?|tests?|ideas?|tries|try|attempts?|runs?|trials?|episodes?|scenes?|steps?)\b"
 _RANDOM_GROUP = re.compile(
     r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
@@ -278,7 +278,7 @@ class _Reader:
         # "2 other balls", "3 fruits at random": free choices, whatever the noun
         for m in list(_RANDOM_GROUP.finditer(text)):
             noun_at = m.start("noun") if m.group("noun") else m.start("noun2")
-            if re.match(_NOT_OBJECTS, text[noun_at:]):
+            if (m.group("noun") or m.group("noun2") or "").split()[0] in NON_OBJECT_NOUNS:
                 continue  # "one more example", "2 more tries": not objects
             if self.vocab.name_pattern.match(text, noun_at) or (m.group("noun") or "").split()[0:1] in (
                 ["objects"], ["object"], ["items"], ["item"], ["things"], ["thing"],

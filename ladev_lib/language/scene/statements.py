@@ -291,7 +291,12 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
                 continue
             if seg[marked:].strip():
                 # about the robot, but only its scene can say which objects: read again there
-                found.append(TaskStatement(s, e, _normalise(seg[marked:].strip()), reader(""), -2))
+                # (from the clause the statement starts in, as above)
+                bounds = [m.end() for m in _CLAUSE_END.finditer(seg[:marked])]
+                first = min((m.start() for p in (AGENT_MODAL, WANT_TO, AGENT_DOES) if (m := p.search(seg))), default=0)
+                before = [b for b in bounds if b <= first]
+                start = s + (before[-1] if before else 0)
+                found.append(TaskStatement(start, e, _normalise(seg[marked:].strip()), reader(""), -2))
                 continue
         inline = INLINE_LABEL.search(seg)
         if inline is not None and seg[: inline.start()].strip():

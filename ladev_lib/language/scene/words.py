@@ -56,6 +56,12 @@ FILLERS = {
     "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "honestly", "thank",
     "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
+NON_OBJECT_NOUNS = frozenset({
+    "example", "examples", "time", "times", "question", "questions", "version", "versions", "variant", "variants",
+    "test", "tests", "idea", "ideas", "try", "tries", "attempt", "attempts", "run", "runs", "trial", "trials",
+    "episode", "episodes", "step", "steps", "demo", "demos", "experiment", "experiments", "scene", "scenes",
+})
+"""Nouns a count or an article introduces in chat ("one more example"), never objects."""
 STOP_PREPOSITIONS = {
     "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
     "behind", "between", "inside", "onto", "into", "by", "toward", "towards", "around", "left",
