@@ -5,7 +5,13 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from ladev_lib.language.scene.words import FILLERS, NON_OBJECT_NOUNS, SCENE_NOUNS, STOP_PREPOSITIONS, Vocabulary
+from ladev_lib.language.scene.words import (
+    FILLERS,
+    NON_OBJECT_NOUNS,
+    SCENE_NOUNS,
+    STOP_PREPOSITIONS,
+    Vocabulary,
+)
 
 
 def canonical_name(vocab: Vocabulary, matched: str) -> str:
