@@ -80,6 +80,10 @@ class CompileConfig(BaseModel):
     check_design: bool = Field(default=True, description="Reject study scenes that do not match their design.")
 
 
+APPROXIMATE_NUDGE_M = 0.15
+"""Farthest an object at colliding coordinates read from a description is moved."""
+
+
 @dataclass(frozen=True)
 class DesignExpectation:
     """What a study scene must be (from ``scenes.parquet``)."""
@@ -190,6 +194,8 @@ class _Compilation:
         self.resolver, self.rng, self.object_set = resolver, rng, object_set
         self.notes: list[str] = []
         self.slots: list[_Slot] = []
+        self.nudge_m = 0.0
+        """How far an object at colliding coordinates may move (0: they are exact and collide)."""
 
     # -- objects -------------------------------------------------------------
     def resolve(self, mention: str, what: str) -> Resolution:
@@ -373,10 +379,15 @@ class _Compilation:
                 order.append(i)
             result = place_objects(
                 requests, self.bounds.workspace_x_m, self.bounds.workspace_y_m, self.rng,
-                min_gap_m=self.config.min_gap_m,
+                min_gap_m=self.config.min_gap_m, nudge_m=self.nudge_m,
             )
-            for i, p in zip(order, result, strict=True):
+            for i, p, r in zip(order, result, requests, strict=True):
                 placed[i] = (p.x, p.y, p.yaw_deg)
+                if r.x is not None and r.y is not None and math.hypot(p.x - r.x, p.y - r.y) > 1e-3:
+                    self.notes.append(
+                        f"{p.obj.display_name!r} moved {math.hypot(p.x - r.x, p.y - r.y) * 100:.1f} cm from "
+                        f"({r.x:.2f}, {r.y:.2f}) to ({p.x:.2f}, {p.y:.2f}): the given point collides"
+                    )
             pending = [i for i in pending if i not in placed]
             if not pending:
                 break
@@ -465,13 +476,21 @@ def compile_operations(
     robot: Robot = "panda",
     scene_id: str | None = None,
     expected: DesignExpectation | None = None,
+    approximate_coordinates: bool = False,
 ) -> CompileOutcome:
-    """Operations -> a validated SceneSpec (see the module docstring), never raising for data."""
+    """Operations -> a validated SceneSpec (see the module docstring), never raising for data.
+
+    ``approximate_coordinates``: the operations' coordinates were read from a description
+    ("ADD plate to (-0.1, 0.05)", no frame or tolerance stated), so an object whose point
+    collides moves to the nearest clear point (up to 15 cm, with a note); otherwise colliding
+    coordinates reject the scene.
+    """
     bounds = bounds or SceneBounds()
     config = config or CompileConfig()
     resolver = resolver or ObjectResolver(catalog, config.match_threshold, embedding_model=config.embedding_model)
     chosen_set = ops.object_set or object_set or config.default_object_set
     comp = _Compilation(ops, catalog, bounds, config, resolver, np.random.default_rng(seed), chosen_set)
+    comp.nudge_m = APPROXIMATE_NUDGE_M if approximate_coordinates else 0.0
     try:
         spec = _compile(comp, seed, default_task, robot, scene_id, expected)
     except _Reject as exc:

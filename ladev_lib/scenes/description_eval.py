@@ -383,14 +383,22 @@ def offline_compile_fn(
     return compile_fn, catalog, compiler.resolver
 
 
-def scene_description_section(rows_path: Path, conf_dir: Path, baseline: dict[str, Any] | None = None) -> str:
-    """The scene-description part of ``reports/language_eval.md``: LADEV (and a stored baseline) per field."""
+def scene_description_section(
+    rows_path: Path,
+    conf_dir: Path,
+    baseline: dict[str, Any] | Sequence[dict[str, Any]] | None = None,
+) -> str:
+    """The scene-description part of ``reports/language_eval.md``: LADEV (and stored figures) per field.
+
+    ``baseline``: one or more stored summaries (``label``, ``scene_exact``, ``per_field``), shown
+    left of LADEV's column in the given order.
+    """
     rows = load_description_rows(rows_path)
     compile_fn, catalog, resolver = offline_compile_fn(conf_dir)
     result = evaluate_descriptions(rows, compile_fn, catalog, resolver)
-    cols = {"LADEV": result.summary()}
-    if baseline is not None:
-        cols = {str(baseline.get("label", "baseline")): baseline, **cols}
+    stored = [baseline] if isinstance(baseline, dict) else list(baseline or [])
+    cols: dict[str, dict[str, Any]] = {str(b.get("label", "baseline")): b for b in stored}
+    cols["LADEV"] = result.summary()
     names = list(cols)
     out = [f"{len(rows)} descriptions ({rows_path.name}); the compiler reads the task from the text.", ""]
     out.append("| measure | " + " | ".join(names) + " |")

@@ -98,6 +98,84 @@ def _place_fixed(
     return None
 
 
+_TURNS = (0.0, 90.0, 45.0, 135.0)
+_MAX_TURN_STEPS = 20000
+
+
+def _turn_fixed(
+    requests: list[PlacementRequest], fixed: list[int], yaws: dict[int, float], grow: float
+) -> dict[int, float] | None:
+    """Yaws for the objects at given coordinates that clear each other (given yaws kept), or None."""
+    options: list[list[Footprint]] = []
+    for i in fixed:
+        r = requests[i]
+        assert r.x is not None and r.y is not None
+        turns = [yaws[i]] if r.yaw_deg is not None else [*_TURNS, yaws[i]]
+        options.append([footprint(r.obj, r.x, r.y, yaw, grow) for yaw in turns])
+    chosen: list[Footprint] = []
+    steps = 0
+
+    def search(k: int) -> bool:
+        nonlocal steps
+        if k == len(options):
+            return True
+        for fp in options[k]:
+            steps += 1
+            if steps > _MAX_TURN_STEPS:
+                return False
+            if not any(overlaps(fp, other) for other in chosen):
+                chosen.append(fp)
+                if search(k + 1):
+                    return True
+                chosen.pop()
+        return False
+
+    if not search(0):
+        return None
+    return {i: fp.yaw_deg for i, fp in zip(fixed, chosen, strict=True)}
+
+
+def _nudge_fixed(
+    requests: list[PlacementRequest],
+    fixed: list[int],
+    yaws: dict[int, float],
+    grow: float,
+    nudge_m: float,
+    workspace_x: tuple[float, float],
+    workspace_y: tuple[float, float],
+) -> dict[int, tuple[float, float, float]] | None:
+    """(x, y, yaw) for the objects at given coordinates, each moved as little as it must, in request order."""
+    out: dict[int, tuple[float, float, float]] = {}
+    prints: list[Footprint] = []
+    step = 0.005
+    for i in fixed:
+        r = requests[i]
+        assert r.x is not None and r.y is not None
+        turns = [yaws[i]] if r.yaw_deg is not None else [*_TURNS, yaws[i]]
+        spot = None
+        for k in range(int(round(nudge_m / step)) + 1):
+            radius = k * step
+            angles = [0.0] if k == 0 else [2 * math.pi * a / (8 * k) for a in range(8 * k)]
+            for a in angles:
+                x, y = r.x + radius * math.cos(a), r.y + radius * math.sin(a)
+                if not (workspace_x[0] <= x <= workspace_x[1] and workspace_y[0] <= y <= workspace_y[1]) and k > 0:
+                    continue
+                for yaw in turns:
+                    fp = footprint(r.obj, x, y, yaw, grow)
+                    if not any(overlaps(fp, other) for other in prints):
+                        spot = (round(x, 4), round(y, 4), yaw, fp)
+                        break
+                if spot is not None:
+                    break
+            if spot is not None:
+                break
+        if spot is None:
+            return None
+        out[i] = spot[:3]
+        prints.append(spot[3])
+    return out
+
+
 def place_objects(
     requests: list[PlacementRequest],
     workspace_x: tuple[float, float],
@@ -105,8 +183,14 @@ def place_objects(
     rng: np.random.Generator,
     min_gap_m: float = 0.02,
     max_tries: int = 400,
+    nudge_m: float = 0.0,
 ) -> list[Placed]:
-    """Positions and yaws for every request, in request order, or PlacementError."""
+    """Positions and yaws for every request, in request order, or PlacementError.
+
+    ``nudge_m`` > 0: given coordinates are approximate (a description's "(0.1, 0.2)"): an object
+    whose coordinates collide moves to the nearest clear point at most this far away (the caller
+    sees it in the returned position); 0: they collide, PlacementError.
+    """
     grow = min_gap_m / 2
     placed: dict[int, Placed] = {}
     prints: list[Footprint] = []
@@ -121,21 +205,26 @@ def place_objects(
     if clash is not None:
         # Objects at given coordinates with no given yaw may turn (square to the table, across it,
         # diagonally) to clear each other; only tried when the drawn yaws collide, so scenes that
-        # placed before place the same.
+        # placed before place the same. The turns are searched together (an earlier object may
+        # have to turn for a later one to fit), depth first, in request order.
+        turned = _turn_fixed(requests, fixed, yaws, grow)
+        if turned is None and nudge_m > 0:
+            moved = _nudge_fixed(requests, fixed, yaws, grow, nudge_m, workspace_x, workspace_y)
+            if moved is not None:
+                requests = [
+                    PlacementRequest(r.obj, *moved[i][:2], moved[i][2]) if i in moved else r
+                    for i, r in enumerate(requests)
+                ]
+                turned = {i: moved[i][2] for i in fixed}
+        if turned is None:
+            raise PlacementError(clash)
         placed.clear()
         prints.clear()
         for i in fixed:
             r = requests[i]
             assert r.x is not None and r.y is not None
-            turns = [yaws[i]] if r.yaw_deg is not None else [0.0, 90.0, 45.0, 135.0, yaws[i]]
-            for yaw in turns:
-                fp = footprint(r.obj, r.x, r.y, yaw, grow)
-                if not any(overlaps(fp, other) for other in prints):
-                    break
-            else:
-                raise PlacementError(clash)
-            placed[i] = Placed(r.obj, r.x, r.y, yaw)
-            prints.append(fp)
+            placed[i] = Placed(r.obj, r.x, r.y, turned[i])
+            prints.append(footprint(r.obj, r.x, r.y, turned[i], grow))
 
     # Largest footprints first: they are the hardest to fit.
     # Objects confined to a region go before the others of the same size class.

@@ -167,6 +167,7 @@ class SceneCompiler:
             robot=item.robot,
             scene_id=item.scene_id,
             expected=item.expected,
+            approximate_coordinates=True,  # a description's coordinates are where a person roughly means
         )
         base.notes = outcome.notes
         if outcome.spec is None:

@@ -258,3 +258,153 @@ def test_chat_around_the_scene_is_not_read_as_objects(vocab):
         "Hey, long week. For the demo on Friday I need a tidy scene: an orange and a basket, "
         "and the robot should put the orange in the basket. Thanks!", vocab)
     assert _named(out) == Counter({"orange": 1, "basket": 1})
+
+
+# -- issue 11: readers for what people write (each case written for these tests) ---------------
+
+
+def test_each_header_governs_only_the_text_after_it(vocab):
+    # one line with both headers: the object part is not read as environment
+    out = read_description(
+        "Number and details of objects: a lemon, a plum and a peach, all sitting at the back of the table. "
+        "Environmental setup: lights 10% brighter. Task: pick up the plum.", vocab,
+    )
+    assert all(_where(out, n) == {"region": "back"} for n in ("lemon", "plum", "peach")), out
+    assert _light(out) == pytest.approx(0.1)
+
+
+@pytest.mark.parametrize("text, objects", [
+    # the group's noun, not a later plural ('4 degrees'), is what "one" stands for
+    ("two cubes, a yellow one at the front and a green one at the back; camera tilted down 4 degrees",
+     {"yellow cube": 1, "green cube": 1}),
+    # "a green and a yellow one": both adjectives share the one noun
+    ("Three objects: two cubes, a yellow and a green one, and a lemon.", {"yellow cube": 1, "green cube": 1, "lemon": 1}),
+    # a group said "on the table" before its members
+    ("So, three cups on the table: the red cup, the green cup and the yellow cup.",
+     {"red cup": 1, "green cup": 1, "yellow cup": 1}),
+])
+def test_groups_spelled_out_by_their_members(vocab, text, objects):
+    out = read_description(text, vocab)
+    assert _named(out) == Counter(objects), out
+    assert _randoms(out) == 0
+
+
+@pytest.mark.parametrize("text", [
+    "My arm always drops bananas, not sure why. This time: a banana and a bowl, nothing fancy.",
+    "Sorry, no idea why it failed. Give me a banana and a bowl.",
+    "A banana and a bowl (honestly, the model confuses them). Something with tools would be next.",
+])
+def test_chat_kinds_and_plural_mentions_are_not_objects(vocab, text):
+    out = read_description(text, vocab)
+    assert _named(out) == Counter({"banana": 1, "bowl": 1}), out
+    assert _randoms(out) == 0
+
+
+@pytest.mark.parametrize("text, where", [
+    ("A mug on the right. A spoon and a fork go on the left.", {"spoon": "left", "fork": "left"}),
+    ("a padlock and a dice, both near the front", {"padlock": "front", "dice": "front"}),
+    ("A lemon at the back; a spoon and a fork at the front.", {"lemon": "back", "spoon": "front", "fork": "front"}),
+    ("Two drinks, a coke can and a pepsi can, stand side by side on the left.", {"coke can": "left", "pepsi can": "left"}),
+])
+def test_a_position_said_of_coordinated_objects_is_said_of_each(vocab, text, where):
+    out = read_description(text, vocab)
+    for name, region in where.items():
+        assert _where(out, name) == {"region": region}, (name, out)
+
+
+def test_a_long_list_keeps_the_position_on_its_last_item(vocab):
+    out = read_description("Objects: a coke can, an apple and a sponge on the right.", vocab)
+    assert _where(out, "sponge") == {"region": "right"} and _where(out, "apple") is None
+
+
+@pytest.mark.parametrize("text, task", [
+    # about the robot, with "the pink one": only the scene says which objects
+    ("two lego bricks, a pink one and a blue one, and the robot moves the pink brick near the blue one.",
+     ("move_near", "pink lego brick", "blue lego brick")),
+    # a task said without its verb
+    ("A lemon and a large green cup, nothing else. Lemon into the cup.", ("put_in", "lemon", "large green cup")),
+    # an inline tag makes a placement sentence the task
+    ("A fork, a spoon and a towel. The spoon goes on the towel (that's the task), not the fork.",
+     ("put_on", "spoon", "towel")),
+    # a question about the arm, ending at "when"
+    ("Can the robot pick up the small yellow lego brick when a pink lego brick lies next to it?",
+     ("pick_up", "small yellow lego brick", None)),
+    # "pick up bottle": the scene's one bottle
+    ("objects: blue plastic bottle, apple; task: pick up bottle", ("pick_up", "blue plastic bottle", None)),
+])
+def test_tasks_that_need_the_scene_to_be_read(vocab, text, task):
+    from ladev_lib.catalog import load_catalog
+    from ladev_lib.scenes.resolve import ObjectResolver
+
+    out = read_description(text, vocab)
+    assert "error" not in out, out
+    t = out["task"]
+    resolver = ObjectResolver(load_catalog(None), 1.01)
+
+    def oid(name: str | None) -> str | None:
+        return None if name is None else resolver.resolve(name).obj.id  # type: ignore[union-attr]
+
+    assert (t["type"], oid(t["source"]), oid(t.get("target"))) == (task[0], oid(task[1]), oid(task[2])), out
+
+
+def test_a_statement_that_introduces_objects_stays_scene_text(vocab):
+    out = read_description(
+        "Could you set up a table with a coke can, a pepsi can and a plate? The robot should put the coke can on the plate.",
+        vocab,
+    )
+    assert _named(out) == Counter({"coke can": 1, "pepsi can": 1, "plate": 1}), out
+
+
+def test_one_more_example_is_not_a_random_object(vocab):
+    out = read_description("We need one more example: a lemon and a bowl.", vocab)
+    assert _randoms(out) == 0 and _named(out) == Counter({"lemon": 1, "bowl": 1})
+
+
+def test_possessive_introduces_an_unknown_object(vocab):
+    out = read_description("On the desk: my stapler (just clutter), a lemon and a bowl.", vocab)
+    assert _named(out)["stapler"] == 1, out
+
+
+def test_container_of_phrases_name_the_catalog_object(vocab):
+    out = read_description("a lemon and a box of Jell-O gelatin", vocab)
+    assert _named(out) == Counter({"lemon": 1, "gelatin box": 1}), out
+
+
+@pytest.mark.parametrize("text, where", [
+    # "next to it": the object described last
+    ("The sugar box is on the left, and a lemon sits next to it.", ("lemon", {"relation": "near", "reference": "sugar box"})),
+    # a relative clause places its own object
+    ("The lemon lies beside a plate that sits in the middle.", ("plate", {"region": "center"})),
+    # "the box": the one box described (or the task's), by its head noun
+    ("A sugar box and a banana. Put the banana on the left and the box on the right.", ("sugar box", {"region": "right"})),
+])
+def test_positions_by_reference(vocab, text, where):
+    out = read_description(text, vocab)
+    assert _where(out, where[0]) == where[1], out
+
+
+def test_the_tasks_object_is_placed_by_its_head_noun(vocab):
+    out = read_description("The robot should put the tuna can on the plate. Put the can on the left.", vocab)
+    assert out["task"]["source"] in ("tuna can", "starkist tuna can")
+    assert any(op.get("position") == {"region": "left"} for op in out["operations"] if op["op"] == "add_object")
+
+
+def test_swap_them_trades_places(vocab):
+    out = read_description("A pear on the left and a plum on the right - actually, swap them.", vocab)
+    assert _where(out, "pear") == {"region": "right"} and _where(out, "plum") == {"region": "left"}, out
+
+
+def test_remove_by_one_word_of_the_name(vocab):
+    out = read_description("A mustard bottle, a windex bottle and a lemon. No, remove the windex.", vocab)
+    assert _named(out) == Counter({"mustard bottle": 1, "lemon": 1}), out
+
+
+def test_a_category_word_before_another_noun_is_a_modifier(vocab):
+    out = read_description("For a fruit test: a lemon and a plate.", vocab)
+    assert _named(out) == Counter({"lemon": 1, "plate": 1}) and _randoms(out) == 0, out
+
+
+def test_vocabulary_knows_every_id_and_category(vocab):
+    assert vocab.ids["blue_plastic_bottle"] == "blue plastic bottle"
+    assert {"fruit", "can", "cup"} <= vocab.categories
+    assert vocab.name_ids["plastic bottle"] == "blue_plastic_bottle"

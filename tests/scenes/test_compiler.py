@@ -164,6 +164,22 @@ def test_overlapping_coordinates_are_rejected(catalog, exact_resolver):
     assert not out.ok and "overlaps" in out.reason
 
 
+def test_a_descriptions_colliding_coordinates_are_moved_to_the_nearest_clear_point(catalog, exact_resolver):
+    # a plate 26 cm across at 11 cm from a banana: read from text, the plate moves (and says so)
+    o = ops(add("banana", x=0.0, y=0.0), add("plate", x=-0.1, y=0.05),
+            task={"type": "put_on", "source": "banana", "target": "plate"})
+    exact = compile_(o, catalog, exact_resolver)
+    assert not exact.ok and "overlaps" in exact.reason
+    out = compile_(o, catalog, exact_resolver, approximate_coordinates=True)
+    assert out.ok, out.reason
+    plate = next(ob for ob in out.spec.objects if ob.id == "plate")
+    moved = math.hypot(plate.x + 0.1, plate.y - 0.05)
+    assert 0 < moved <= 0.15 + 1e-6
+    assert any("moved" in n and "plate" in n for n in out.notes), out.notes
+    banana = next(ob for ob in out.spec.objects if ob.id == "011_banana")
+    assert (banana.x, banana.y) == pytest.approx((0.0, 0.0))  # the first object keeps its point
+
+
 def test_a_study_scene_must_match_its_design(catalog, exact_resolver):
     o = ops(add("apple"), add(), task={"type": "pick_up", "source": "apple"})
     ok = compile_(o, catalog, exact_resolver, expected=DesignExpectation("pick_up", 2, "simpler", "default"))

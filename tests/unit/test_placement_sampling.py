@@ -1,5 +1,7 @@
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -85,3 +87,26 @@ def test_basic_instruction_forms():
     assert basic_instruction("put_in", "eggplant", "basket") == "put the eggplant in the basket"
     with pytest.raises(ValueError, match="needs a target"):
         basic_instruction("put_on", "carrot")
+
+
+def test_fixed_objects_turn_together_to_clear_each_other(catalog):
+    # a knife and a fork 10 cm apart along x: the first one placed must turn too
+    knife, fork = catalog.get("032_knife"), catalog.get("030_fork")
+    placed = place_objects(
+        [PlacementRequest(knife, 0.05, 0.0), PlacementRequest(fork, -0.05, 0.0)],
+        (-0.15, 0.15), (-0.25, 0.25), np.random.default_rng(3),
+    )
+    prints = [footprint(p.obj, p.x, p.y, p.yaw_deg, 0.01) for p in placed]
+    assert not overlaps(prints[0], prints[1])
+    assert [(p.x, p.y) for p in placed] == [(0.05, 0.0), (-0.05, 0.0)]
+
+
+def test_approximate_coordinates_move_only_as_far_as_needed(catalog):
+    can = catalog.get("coke_can")
+    placed = place_objects(
+        [PlacementRequest(can, 0.0, 0.0, 0.0), PlacementRequest(can, 0.03, 0.0, 0.0)],
+        (-0.15, 0.15), (-0.25, 0.25), np.random.default_rng(0), nudge_m=0.15,
+    )
+    assert (placed[0].x, placed[0].y) == (0.0, 0.0)
+    moved = math.hypot(placed[1].x - 0.03, placed[1].y)
+    assert 0 < moved <= 0.06  # a can is 6.6 cm across plus the gap: a few cm, not anywhere

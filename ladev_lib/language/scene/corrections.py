@@ -9,6 +9,8 @@
   move);
 - "not a bowl, a mug", "no bowl", "without a sponge": the negated object is
   not in the scene;
+- "a on the left and b on the right - actually, swap them": the two objects
+  trade places (the reader swaps them at ``@swap@``);
 - "drop the pepsi can", "scratch the softball", "remove the mug", "leave out
   the lemon": an object described earlier is taken out (``dropped`` lists the
   names, in order; the reader removes the last such object it read).
@@ -33,6 +35,7 @@ _DIRECTIONS = (
     "counterclockwise", "anticlockwise", "clockwise", "left", "right", "up", "down", "forward", "backward", "back",
     "closer", "farther", "higher", "lower", "brighter", "darker", "dimmer",
 )
+_SWAP = re.compile(r"\s*(?:swap|switch|exchange)\s+(?:them|those|these|the two|their (?:places|positions|spots))\b[\s:,]*")
 _CLAUSE_START = re.compile(r"[:;.!?\n]|—|\s-+\s|\bthen\b")
 _KEEP = re.compile(r"\b(?:camera|cam|view|light|lights|lighting|brightness)\b")
 _REMOVE_VERB = (
@@ -49,6 +52,11 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
         m = _MARKER.search(out)
         if m is None or not _has_content_after(out, m.end()):
             break
+        swap = _SWAP.match(out, m.end())
+        if swap is not None:
+            # "a on the left and b on the right - actually, swap them": nothing is taken back
+            out = out[: m.start()] + " . @swap@ . " + out[swap.end():]
+            continue
         starts = [c.end() for c in _CLAUSE_START.finditer(out, 0, m.start())]
         start = starts[-1] if starts else 0
         taken = out[start:m.start()]
@@ -98,6 +106,20 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
     out = re.sub(
         rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<name>{names})(?=\s*(?:$|[,;.!]|\band\b|\breplace))",
         take_out, out,
+    )
+
+    def take_out_by_word(m: re.Match[str]) -> str:
+        # "remove the windex": the one object named before whose name has that word
+        word = m.group("word")
+        said = {n.group(0) for n in vocab.name_pattern.finditer(out[: m.start()]) if word in n.group(0).split()}
+        if len(said) != 1:
+            return m.group(0)
+        dropped.append(said.pop())
+        return " "
+
+    out = re.sub(
+        rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<word>[a-z0-9]+)(?=\s*(?:$|[,;.!]|\band\b))",
+        take_out_by_word, out,
     )
     return out, dropped
 

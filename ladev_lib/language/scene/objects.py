@@ -5,7 +5,13 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from ladev_lib.language.scene.words import FILLERS, SCENE_NOUNS, STOP_PREPOSITIONS, Vocabulary
+from ladev_lib.language.scene.words import (
+    FILLERS,
+    NON_OBJECT_NOUNS,
+    SCENE_NOUNS,
+    STOP_PREPOSITIONS,
+    Vocabulary,
+)
 
 
 def canonical_name(vocab: Vocabulary, matched: str) -> str:
@@ -114,8 +120,12 @@ def find_region(text: str) -> tuple[str, str] | None:
     text = re.sub(r"\b(?:on|at|in|to|towards?|toward)\s+the\s+(?:side|corner|edge|part)?\b", " ", text)
     return region, text
 
+_JOINERS = {"and", "or", "plus", "also", "then"}
+
+
 def unknown_phrase(text: str) -> str | None:
     """An object phrase that names nothing in the catalog, where a phrase introduces one."""
+    text = re.sub(r"\([^()]*\)", " ", text)  # "my stapler (just clutter)": an aside
     words = re.findall(r"@n@|@\w+@|[a-z][a-z0-9]*|\d+(?:\.\d+)?", text)
     run: list[str] = []
     introduced = False
@@ -133,7 +143,10 @@ def unknown_phrase(text: str) -> str | None:
         if run and (w in STOP_PREPOSITIONS or w in ("that", "which", "who", "is", "are")):
             end = i
             break
-        if w in FILLERS or re.fullmatch(r"\d+(?:\.\d+)?", w):
+        if w in FILLERS or w in ("my", "our") or re.fullmatch(r"\d+(?:\.\d+)?", w):
+            if not run and w in ("the", "this", "that", "these", "those", "its", "their"):
+                introduced = False  # "2 - the model confuses them": a determiner between
+                continue
             if not run:
                 # introduced as a new object: "a/an/my X", "2 X", "add X" (not "the X", a reference)
                 if w in ("a", "an", "another", "add", "my", "our", "spawn") or re.fullmatch(r"\d+", w):
@@ -142,14 +155,22 @@ def unknown_phrase(text: str) -> str | None:
             end = i
             break
         run.append(w)
-    if not run or len(run) > 3 or len("".join(run)) < 3:
+    if not run or len(run) > 3 or len("".join(run)) < 3 or run[-1] in NON_OBJECT_NOUNS:
         return None
     # the phrase must be all the clause names: nothing but fillers after it
     if any(w not in FILLERS and not w.startswith("@") and w not in STOP_PREPOSITIONS for w in words[end:]):
         return None
-    bare_item = len(content) == len(run) and len(words) <= len(run) + 1 and len(run) <= 2
+    # a bare item is a list entry ("pear, plum", "- softball"), not chat ("this time", "nothing fancy",
+    # "no idea why"): nothing but a list joiner beside it
+    others = [w for w in words if w not in run and not w.startswith("@")]
+    bare_item = (
+        len(content) == len(run) and len(words) <= len(run) + 1 and len(run) <= 2
+        and all(w in _JOINERS for w in others)
+    )
     if not introduced and not bare_item:
         return None
+    if not introduced and re.search(r"[a-z]{3}(?<!s)s$", run[-1]):
+        return None  # "something with tools": a kind of object, not one on the table
     return " ".join(run)
 
 
@@ -167,10 +188,19 @@ def singular(phrase: str) -> str:
 
 
 _GROUP = re.compile(
-    r"\b(?P<n>[2-9])\s+(?P<np>(?:[a-z]+\s+)?[a-z]+?)(?:es|s)\b(?P<sep>\s*(?:,|:|-|\()\s*)"
+    r"\b(?P<n>[2-9])\s+(?P<np>(?:[a-z]+\s+)?[a-z]+?)(?:es|s)\b"
+    r"(?:\s+(?:on|at|in)\s+the\s+(?:table|scene|workspace|tabletop))?"  # "4 cups on the table: the ..."
+    r"(?P<sep>\s*(?:,|:|-|\()\s*)"
     r"(?=(?:a|an|one|1|the)\s)"
 )
-_BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]+?(?:es|s)\b")
+_BACK_GROUP = re.compile(r"\b(?:those|these|the|both|all)\s+[2-9]\s+(?:[a-z]+\s+)?[a-z]{2,}?(?:es|s)\b")
+_UNITS = {
+    "degree", "deg", "cm", "mm", "centimeter", "centimetre", "millimeter", "millimetre", "percent", "second",
+    "step", "time", "minute", "inch", "meter", "metre", "episode", "trial", "run",
+}
+ADJECTIVES = (
+    r"green|yellow|red|blue|pink|purple|orange|white|black|brown|small|large|big|little|light blue|dark|other"
+)
 _GENERIC = {"object", "item", "thing", "prop", "piece", "distractor", "random object", "other object"}
 
 
@@ -182,8 +212,35 @@ def expand_groups(text: str) -> str:
     the group); "the green one" after "2 blocks" -> "the green block". Counts
     of generic nouns ("3 objects: ...") are totals and stay.
     """
-    out = text
     heads: list[tuple[int, str]] = []
+    for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", text):
+        np_ = singular(m.group(2).strip())
+        if np_.split()[-1] in _UNITS or re.match(r"(?:more|other|random|extra)\b", np_):
+            continue  # "3 degrees", "2 more objects": not a group of objects
+        if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
+            heads.append((m.end(), np_))
+
+    def head_before(pos: int) -> str | None:
+        found = [h for p, h in heads if p <= pos]
+        return found[-1] if found else None
+
+    def one(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        return f"{m.group(1)} {m.group(2)} {head}"
+
+    def pair(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        return f"{m.group(1)} {m.group(2)} {head} and {m.group(3)} {m.group(4)} {head}"
+
+    # "2 cubes, a green and a yellow one": the first adjective shares the second's "one"
+    text = re.sub(
+        rf"\b(a|an|the|one|1)\s+({ADJECTIVES})\s+and\s+(a|an|the|one|1)\s+({ADJECTIVES})\s+(?:ones?|1)\b", pair, text
+    )
+    text = re.sub(rf"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:{ADJECTIVES}))\s+(?:one|1)\b", one, text)
     # "those 2 blocks": the objects already named (by the task), not more of them
     text = _BACK_GROUP.sub(lambda m: " " + m.group(0).split(None, 1)[1] + "@", text)
     out = re.sub(r"\b[2-9]\s+(?:[a-z]+\s+)?[a-z]+@", " ", text)
@@ -192,29 +249,4 @@ def expand_groups(text: str) -> str:
         if np_ in _GENERIC or np_.split()[-1] in {w.split()[-1] for w in _GENERIC}:
             continue
         out = out[: m.start()] + " " + out[m.end():]
-    for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", out):
-        np_ = singular(m.group(2).strip())
-        if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
-            heads.append((m.end(), np_))
-    if not heads:
-        # the group was removed: its noun is still the antecedent of "a green one"
-        for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))@?(?![a-z])", text):
-            np_ = singular(m.group(2).strip())
-            if np_ not in _GENERIC and np_.split()[-1] not in {w.split()[-1] for w in _GENERIC}:
-                heads.append((0, np_))
-
-    def head_before(pos: int) -> str | None:
-        found = [h for p, h in heads if p <= pos]
-        return found[-1] if found else (heads[0][1] if heads else None)
-
-    def one(m: re.Match[str]) -> str:
-        head = head_before(m.start())
-        if head is None:
-            return m.group(0)
-        return f"{m.group(1)} {m.group(2)} {head}"
-
-    return re.sub(
-        r"\b(a|an|the|one|1)\s+((?:[a-z]+\s+)?(?:green|yellow|red|blue|pink|purple|orange|white|black|brown|"
-        r"small|large|big|little|light blue|dark|other))\s+(?:one|1)\b",
-        one, out,
-    )
+    return out

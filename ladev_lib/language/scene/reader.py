@@ -21,6 +21,7 @@ from ladev_lib.language.scene.environment import (
 )
 from ladev_lib.language.scene.instruction import parse_instruction
 from ladev_lib.language.scene.objects import (
+    ADJECTIVES,
     canonical_name,
     expand_groups,
     find_region,
@@ -32,10 +33,13 @@ from ladev_lib.language.scene.objects import (
 from ladev_lib.language.scene.statements import find_task
 from ladev_lib.language.scene.words import (
     COUNT_TOTAL,
+    FILLERS,
     HEADERS,
     KEYED_COUNT,
+    NON_OBJECT_NOUNS,
     NUM,
     RANDOM_QUALIFIER,
+    STOP_PREPOSITIONS,
     Vocabulary,
     normalize_text,
     protect_coordinates,
@@ -47,6 +51,13 @@ _RANDOM_GROUP = re.compile(
     r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
 )
+_RELATION_WORDS = r"right next to|next to|near|beside|by|close to|behind|in front of|left of|right of"
+_AFTER_NOUN = frozenset(
+    {"and", "or", "plus", "that", "which", "too", "also", "somewhere", "anywhere", "as", "please", "is", "are",
+     "should", "will", "of", "then", "there", "here", "lying", "sitting", "standing", "placed"}
+)
+"""Words that may follow an object noun (a category word followed by any other is a modifier)."""
+_PLURAL_VERB = r"are|go|sit|stand|lie|stay|belong"
 _MEMBER = re.compile(
     r"\b(?:\d+|one|some)\s+of\s+(?:them|which|those|these|the \d+)\b|\bamong\s+(?:them|which|those)\b|"
     r"\binclud(?:e|es|ing)\b|\bone being\b|\bof which\b"
@@ -80,14 +91,20 @@ class _Reading:
 
 
 class _Reader:
-    def __init__(self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]]) -> None:
+    def __init__(
+        self, vocab: Vocabulary, slots: dict[str, tuple[float, ...]], task_objects: tuple[str, ...] = ()
+    ) -> None:
         self.vocab = vocab
         self.slots = slots
+        self.task_objects = task_objects
+        self.task_object = task_objects[0] if task_objects else None
+        """The stated task's object: what "it" refers to before any object is described."""
         self.out = _Reading()
         self._previous_domain: str | None = None
         self._listy = True
         self._sentence_randoms = 0
         self._sentence_first = 0
+        self._sentence_text = ""
 
     def read(self, text: str) -> _Reading:
         domain_hint: str | None = None
@@ -100,15 +117,28 @@ class _Reader:
                 self.out.task_line = task.group(1).strip().rstrip(".")
                 self.out.recognised += 1
                 continue
+            # Each header governs the text after it, up to the next header ("Number and details of
+            # objects: ... Environmental setup: ..." on one line).
+            at = 0
+            parts: list[tuple[str, str | None]] = []
             for header in HEADERS.finditer(line):
+                parts.append((line[at:header.start()], domain_hint))
                 name = header.group(1)
                 domain_hint = "environment" if name.startswith(("env", "setup")) else "objects"
-            line = HEADERS.sub(" ", line)
-            for sentence in split_sentences(line):
-                self._sentence(sentence, domain_hint)
+                at = header.end()
+            parts.append((line[at:], domain_hint))
+            for part, hint in parts:
+                for sentence in split_sentences(part):
+                    self._sentence(sentence, hint)
         return self.out
 
     def _sentence(self, sentence: str, hint: str | None) -> None:
+        if "@swap@" in sentence:
+            placed = [o for o in self.out.objects if o.position is not None]
+            if len(placed) >= 2:
+                placed[-2].position, placed[-1].position = placed[-1].position, placed[-2].position
+            sentence = sentence.replace("@swap@", " ")
+            self.out.recognised += 1
         self._object_set(sentence)
         # An unknown noun is an object only where the sentence lists objects (names a catalog
         # object, counts objects or adds one), not in chat around the scene.
@@ -129,6 +159,7 @@ class _Reader:
         # "objects: 2" would be cut apart at the colon below: read it first.
         self._sentence_randoms = 0
         self._sentence_first = len(self.out.objects)
+        self._sentence_text = sentence
         keyed = KEYED_COUNT.search(sentence)
         if keyed is not None:
             qualifier = re.search(r"\b(?:random|other|extra|additional|unnamed|free)\s*$", sentence[: keyed.start()])
@@ -201,6 +232,29 @@ class _Reader:
             self.out.object_set = "simpler"
 
     # -- objects -----------------------------------------------------------------
+    def _same(self, a: str | None, b: str | None) -> bool:
+        """Two mentions of one catalog object ("7up" and "7up can")."""
+        if a is None or b is None:
+            return False
+        ids = self.vocab.name_ids
+        return a == b or (a in ids and ids.get(a) == ids.get(b))
+
+    def _distributes(self, clause: str, found: list[_ObjectOp]) -> bool:
+        """Whether a position said after the last of coordinated objects is said of all of them.
+
+        "a bowl and a mug go on the left" (a plural verb), "a padlock and a scrub sponge,
+        both near the center", or a sentence that is only the pair ("a marker and a fork at
+        the front"); not "a coke can, an apple and a sponge on the right" in a longer list.
+        """
+        earlier = self.out.objects[self._sentence_first:]
+        if len(found) != 1 or not earlier or any(o.position is not None for o in earlier):
+            return False
+        if re.search(rf"\b(?:{_PLURAL_VERB}|both|all|together|side by side)\b", clause):
+            return True
+        names = self.vocab.name_pattern.pattern
+        pair = rf"(?:a|an|the|\d+)\s+{names}\s+and\s+(?:a|an|the|\d+)\s+{names}\b"
+        return len(earlier) == 1 and re.match(rf"\s*{pair}", self._sentence_text) is not None
+
     def _objects(self, clause: str, last: _ObjectOp | None) -> _ObjectOp | None:
         text = f" {clause} "
         position: dict[str, Any] | None = None
@@ -224,6 +278,8 @@ class _Reader:
         # "2 other balls", "3 fruits at random": free choices, whatever the noun
         for m in list(_RANDOM_GROUP.finditer(text)):
             noun_at = m.start("noun") if m.group("noun") else m.start("noun2")
+            if (m.group("noun") or m.group("noun2") or "").split()[0] in NON_OBJECT_NOUNS:
+                continue  # "one more example", "2 more tries": not objects
             if self.vocab.name_pattern.match(text, noun_at) or (m.group("noun") or "").split()[0:1] in (
                 ["objects"], ["object"], ["items"], ["item"], ["things"], ["thing"],
             ):
@@ -254,6 +310,21 @@ class _Reader:
             text = text.replace(key, " ")
             consumed = True
 
+        # "next to it": the object described last (or the task's object, before any is)
+        antecedent = self.out.objects[-1].mention if self.out.objects else self.task_object
+        if antecedent:
+            text = re.sub(
+                rf"\b({_RELATION_WORDS})\s+(?:it|that one)\b", lambda m: f"{m.group(1)} the {antecedent}", text
+            )
+        # "a towel that lies in the centre": the relative clause places the towel, not the subject
+        relative: tuple[str, dict[str, Any]] | None = None
+        rel_m = re.search(
+            rf"(?P<name>{self.vocab.name_pattern.pattern})\s+(?:that|which)\s+(?:is|lies|sits|stands|rests)\b(?P<rest>.*)$",
+            text,
+        )
+        if rel_m is not None and (where := find_region(rel_m.group("rest"))) is not None:
+            relative = (canonical_name(self.vocab, rel_m.group("name")), {"region": where[0]})
+            text = text[: rel_m.end("name")] + " "
         # Relations to another object: "near the bowl", "left of the plate".
         rel = find_relation(self.vocab, text)
         if rel is not None:
@@ -267,6 +338,33 @@ class _Reader:
             position = position or {"region": region}
             consumed = True
 
+        if relative is not None:
+            name, where_pos = relative
+            same = [o for o in self.out.objects if self._same(o.mention, name)]
+            if same:
+                if same[-1].position is None:
+                    same[-1].position = where_pos
+            else:
+                self.out.objects.append(_ObjectOp(name, where_pos))
+            if position is not None and position.get("reference") and self._same(position["reference"], name):
+                text = text.replace(rel_m.group("name") if rel_m else name, " ", 1)  # the reference is not the subject
+        # "the can on the left": an object described before, by its head noun
+        if position is not None and not self.vocab.name_pattern.search(text):
+            head = re.search(r"\bthe\s+([a-z]+)\b", text)
+            if head is not None and head.group(1) not in FILLERS:
+                word = head.group(1)
+                same = [o for o in self.out.objects if o.mention and o.mention.split()[-1] in (word, singular(word))]
+                if len({o.mention for o in same}) == 1 and same[-1].position is None:
+                    same[-1].position = position
+                    self.out.recognised += 1
+                    return same[-1]
+                task_named = [t for t in self.task_objects if t.split()[-1] in (word, singular(word))]
+                if not same and len(set(task_named)) == 1:
+                    # "the can on the left": the task's can, not described before
+                    obj = _ObjectOp(task_named[0], position)
+                    self.out.objects.append(obj)
+                    self.out.recognised += 1
+                    return obj
         # Named objects, with quantities ("2 apples"). A definite mention of an
         # object already described ("the bowl in the middle", "towel: back") is
         # that object again, not another one.
@@ -275,7 +373,7 @@ class _Reader:
         for m in matches:
             name = canonical_name(self.vocab, m.group(0))
             before = text[: m.start()]
-            earlier = [o for o in self.out.objects if o.mention == name]
+            earlier = [o for o in self.out.objects if self._same(o.mention, name)]
             definite = re.search(r"\b(?:the|that|this|its|both|said|same)\s+(?:\w+\s+)?$", before) is not None
             bare_update = (
                 not re.search(r"\b(?:a|an|another|one|\d+|add|plus|and|also)\s+(?:\w+\s+)?$", before)
@@ -292,6 +390,12 @@ class _Reader:
                 last = target
                 continue
             qty = quantity(before)
+            if (
+                m.group(0) not in self.vocab.canonical
+                and name != m.group(0)
+                and not re.search(r"(?:^|\s)\d+\s+(?:[a-z]+\s+)?$|\b(?:some|several|many|few)\s+$", before)
+            ):
+                continue  # "my robot keeps failing on aubergines": a kind of object, not one on the table
             for _ in range(qty):
                 found.append(_ObjectOp(name))
         if matches and not found:
@@ -300,6 +404,9 @@ class _Reader:
         if not found:
             for m in self.vocab.category_pattern.finditer(text):
                 cat = m.group("cat")
+                after = re.match(r"\s+([a-z]+)", text[m.end():])
+                if after is not None and after.group(1) not in STOP_PREPOSITIONS | _AFTER_NOUN:
+                    continue  # "a fruit test", "a tool demo": the category names another noun's kind
                 qty = quantity(m.group(0)[: m.start("cat") - m.start()])
                 found.extend(_ObjectOp(cat) for _ in range(qty))
             text_wo_names = self.vocab.category_pattern.sub(" @n@ ", text_wo_names)
@@ -317,12 +424,19 @@ class _Reader:
             self._sentence_randoms -= taken
             self.out.randoms -= taken
         if found:
+            if position is not None and self._distributes(clause, found):
+                for obj in self.out.objects[self._sentence_first:]:
+                    if obj.position is None:
+                        obj.position = dict(position)
             if position is not None:
                 found[-1].position = position
             self.out.objects.extend(found)
             self.out.recognised += 1
             return found[-1]
-        if position is not None and re.search(r"\b(?:all|both|each|all of them|both of them)\b", text):
+        if position is not None and (
+            re.search(r"\b(?:all|both|each|all of them|both of them|together|side by side)\b", text)
+            or re.search(rf"^\s*(?:2|{_PLURAL_VERB})\b", clause)
+        ):
             # "a pepsi can and a sprite can, all lined up at the front": every object of the sentence
             for obj in self.out.objects[self._sentence_first:]:
                 if obj.position is None:
@@ -358,7 +472,10 @@ def read_description(
     found = find_task(description or "", vocab.ids)
     text, dropped = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
-    reading = _Reader(vocab, slots).read(protected)
+    task_objects = tuple(
+        str(found.task[k]) for k in ("source", "target") if found.task is not None and found.task.get(k)
+    )
+    reading = _Reader(vocab, slots, task_objects).read(protected)
     for name in dropped:
         canonical = canonical_name(vocab, name)
         idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]
@@ -384,6 +501,11 @@ def read_description(
         out["task"] = stated
     elif found.statement and (retry := _task_in_scene(found.statement, reading, vocab)) is not None:
         out["task"] = retry  # "pick up bottle" in a scene with one bottle
+        stated = retry
+    elif (retry := next(
+        (t for c in found.candidates if (t := _task_in_scene(c, reading, vocab)) is not None), None
+    )) is not None:
+        out["task"] = retry  # "the robot moves the green brick near the pink one", in its scene
         stated = retry
     elif found.statement or reading.task_line:
         what = found.statement or reading.task_line
@@ -439,10 +561,16 @@ def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | N
 
 def _task_in_scene(statement: str, reading: _Reading, vocab: Vocabulary) -> dict[str, Any] | None:
     """A task statement read again with the described objects as its scene ("the bottle" = the one there)."""
-    by_name = {name: cid for cid, name in vocab.ids.items()}
+    by_name = {**vocab.name_ids, **{name: cid for cid, name in vocab.ids.items()}}
     ids = [by_name[o.mention] for o in reading.objects if o.mention in by_name]
     if not ids:
         return None
+    # "move the green brick near the pink one": 'one' is the other object's noun
+    statement = statement.lower()
+    named = vocab.name_pattern.search(statement)
+    if named is not None:
+        head = re.sub(rf"^(?:(?:{ADJECTIVES})\s+)+", "", canonical_name(vocab, named.group(0)))
+        statement = re.sub(rf"\b((?:the|a|an)\s+(?:{ADJECTIVES}))\s+one\b", rf"\1 {head}", statement)
     frame = read_instruction(statement, scene_objects=ids)
     if frame.task is None or frame.task == "other" or frame.object is None or not frame.ok:
         return None

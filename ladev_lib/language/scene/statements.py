@@ -63,7 +63,8 @@ AGENT_DOES = re.compile(
 WANT_TO = re.compile(
     rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
     rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)"
-    rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)",
+    rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)"
+    rf"|\b(?:can|could|will|does|do)\s+(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator|it)\s+(?:still\s+|reliably\s+|actually\s+)?(?={_VERB}\b)",  # "can the arm pick up ...?"
     re.IGNORECASE,
 )
 BACK_LABEL = re.compile(
@@ -85,8 +86,34 @@ _PLACE_WORDS = frozenset(
 _SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—")
 
 
+INLINE_LABEL = re.compile(
+    r"\s*[(,]?\s*(?:that|this)(?:'s|s|\s+is)\s+(?:the\s+)?(?:robot'?s?\s+|arm'?s?\s+|its\s+)?"
+    r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)\b\s*\)?",
+    re.IGNORECASE,
+)
+_GOES = re.compile(
+    r"^\s*(?P<x>.+?)\s+(?:goes|belongs|should\s+go|needs\s+to\s+go|has\s+to\s+go|must\s+go|ends?\s+up)\s+"
+    r"(?P<rel>on\s+top\s+of|onto|on|into|inside|in|near|next\s+to|beside)\s+(?P<y>.+)$",
+    re.IGNORECASE,
+)
+_VERBLESS = re.compile(r"^\s*(?P<x>(?:the\s+)?[a-z0-9' ]{2,40}?)\s+(?P<rel>into|onto)\s+(?P<y>(?:the\s+)?[a-z0-9' ]{2,40}?)\s*$", re.IGNORECASE)
+
+
+def _as_command(clause: str) -> str:
+    """'the brick goes on the towel' / 'plum into the cup' -> 'put the brick on the towel' (else as given)."""
+    m = _GOES.match(clause) or _VERBLESS.match(clause)
+    if m is None:
+        return clause
+    rel = re.sub(r"\s+", " ", m.group("rel").lower())
+    verb = "move" if rel in ("near", "next to", "beside") else "put"
+    return f"{verb} {m.group('x')} {rel} {m.group('y')}"
+
+
+_INTRODUCES = re.compile(r"\b(?:a|an|some|\d+|one|two|three|four|five|six|seven)\s", re.IGNORECASE)
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
-_NEW_CLAUSE = re.compile(r",?\s*(?:and\s+|but\s+|while\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE)
+_NEW_CLAUSE = re.compile(
+    r",?\s*(?:and\s+|but\s+|while\s+|whereas\s+|when\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE
+)
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
 
 
@@ -110,6 +137,9 @@ class FoundTask:
     rest: str
     statement: str | None = None
     statements: list[TaskStatement] = field(default_factory=list)
+    candidates: list[str] = field(default_factory=list)
+    """Statements marked as the task that need the scene to be read ("the robot moves the green
+    brick near the pink one", "plum into the cup"), last first; the reader retries them in its scene."""
 
 
 def _segments(text: str) -> list[tuple[int, int]]:
@@ -134,7 +164,7 @@ def _is_place(phrase: NounPhrase | None) -> bool:
 def _cuts(candidate: str) -> list[tuple[str, int]]:
     """The candidate, then shorter versions cut at clause boundaries (first boundary last), with their lengths."""
     out = [(candidate, len(candidate))]
-    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|so that|so|then|with|because)\s+|\(|\)", candidate))):
+    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|whereas|when|so that|so|then|with|because)\s+|\(|\)", candidate))):
         head = candidate[: m.start()]
         if head.strip() and head.strip() not in [c.strip() for c, _ in out]:
             out.append((head, m.start()))
@@ -259,6 +289,35 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
                 # a labelled task that is none of the four forms is still the task statement
                 found.append(TaskStatement(s, e, seg[marked:].strip(), reader(seg[marked:].strip()), 0))
                 continue
+            if seg[marked:].strip():
+                # about the robot, but only its scene can say which objects: read again there
+                # (from the clause the statement starts in, as above)
+                bounds = [m.end() for m in _CLAUSE_END.finditer(seg[:marked])]
+                first = min((m.start() for p in (AGENT_MODAL, WANT_TO, AGENT_DOES) if (m := p.search(seg))), default=0)
+                before = [b for b in bounds if b <= first]
+                start = s + (before[-1] if before else 0)
+                found.append(TaskStatement(start, e, _normalise(seg[marked:].strip()), reader(""), -2))
+                continue
+        inline = INLINE_LABEL.search(seg)
+        if inline is not None and seg[: inline.start()].strip():
+            # "the small brick goes on the towel (that's the task), not the pink one"
+            said = _as_command(seg[: inline.start()])
+            frame = _read(said, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, said.strip(), frame, 2))
+            else:
+                found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
+            continue
+        verbless = _VERBLESS.match(seg)
+        if verbless is not None and IMPERATIVE.match(seg) is None:
+            # "Plum into the cup.": a task said without its verb
+            said = _as_command(seg)
+            frame = _read(said, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, said, frame, 1))
+            else:
+                found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
+            continue
         m = IMPERATIVE.match(seg)
         if m is None:
             continue
@@ -307,16 +366,20 @@ def find_task(
     strong = [s for s in statements if s.strength == 2]
     weak = [s for s in statements if s.strength == 1]
     unreadable = [s for s in statements if s.strength == 0]
+    maybe = [s for s in statements if s.strength == -2]
     chosen = strong[-1] if strong else (weak[-1] if weak else None)
-    removed = [s for s in statements if s.strength in (2, 0, -1)] + ([chosen] if chosen is not None else [])
+    # a statement to read in the scene leaves the text unless it introduces objects ("set up a table with a ...")
+    maybe_out = [s for s in maybe if not _INTRODUCES.search(s.text)]
+    removed = [s for s in statements if s.strength in (2, 0, -1)] + maybe_out + ([chosen] if chosen is not None else [])
     rest = text
     spans = {(s.start, s.end): s.replacement for s in removed}
     for (a, b), keep in sorted(spans.items(), reverse=True):
         rest = rest[:a] + keep + rest[b:]
+    candidates = [s.text for s in reversed(maybe)]
     if chosen is None:
         if unreadable:
-            return FoundTask(None, rest, unreadable[-1].text, statements)
-        return FoundTask(None, rest, None, statements)
+            return FoundTask(None, rest, unreadable[-1].text, statements, candidates)
+        return FoundTask(None, rest, None, statements, candidates)
     names = names or {}
     frame = chosen.frame
     task = {
@@ -324,4 +387,4 @@ def find_task(
         "source": _mention(frame.object, names),
         "target": _mention(frame.destination, names) if frame.task != "pick_up" else None,
     }
-    return FoundTask(task, rest, chosen.text, statements)
+    return FoundTask(task, rest, chosen.text, statements, candidates)

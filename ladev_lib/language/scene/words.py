@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 # -- numbers -----------------------------------------------------------------------
@@ -56,6 +56,12 @@ FILLERS = {
     "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "honestly", "thank",
     "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
+NON_OBJECT_NOUNS = frozenset({
+    "example", "examples", "time", "times", "question", "questions", "version", "versions", "variant", "variants",
+    "test", "tests", "idea", "ideas", "try", "tries", "attempt", "attempts", "run", "runs", "trial", "trials",
+    "episode", "episodes", "step", "steps", "demo", "demos", "experiment", "experiments", "scene", "scenes",
+})
+"""Nouns a count or an article introduces in chat ("one more example"), never objects."""
 STOP_PREPOSITIONS = {
     "on", "in", "at", "to", "from", "with", "of", "for", "over", "under", "near", "beside", "next",
     "behind", "between", "inside", "onto", "into", "by", "toward", "towards", "around", "left",
@@ -121,29 +127,34 @@ class Vocabulary:
     ids: dict[str, str]
     """catalog id -> display name (ids may appear verbatim in text)."""
     categories: set[str]
+    name_ids: dict[str, str] = field(default_factory=dict)
+    """Name or synonym as the catalog writes it (normalised) -> catalog id."""
 
     @classmethod
     def from_objects(cls, objects: Iterable[Mapping[str, Any]]) -> Vocabulary:
         names: set[str] = set()
         ids: dict[str, str] = {}
         categories: set[str] = set()
+        name_ids: dict[str, str] = {}
         for o in objects:
             display = _norm_name(str(o["name"]))
             names.add(display)
+            name_ids.setdefault(display, str(o["id"]).lower())
             for s in o.get("synonyms", ()) or ():
                 names.add(_norm_name(str(s)))
+                name_ids.setdefault(_norm_name(str(s)), str(o["id"]).lower())
+            ids[str(o["id"]).lower()] = display
+            if o.get("category"):
+                categories.add(str(o["category"]).replace("_", " "))
         for n in list(names):
             spaced = re.sub(r"(?<=\d)(?=[a-z])", " ", n)
             if spaced != n:
                 names.add(spaced)
-            ids[str(o["id"]).lower()] = display
-            if o.get("category"):
-                categories.add(str(o["category"]).replace("_", " "))
         canonical = {_digits(n): n for n in names}
         for form, name in list(canonical.items()):
             if SPLIT_WORDS.search(form):
                 canonical[form.replace(" ", "~")] = name
-        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories)
+        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories, name_ids)
 
     @property
     def name_pattern(self) -> re.Pattern[str]:
@@ -188,6 +199,17 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
             t = re.sub(rf"(?<![a-z0-9]){re.escape(cid)}(?![a-z0-9])", display, t)
     t = re.sub(r"(?<=[a-z])-(?=[a-z0-9])|(?<=[0-9])-(?=[a-z])", " ", t)
     t = re.sub(r"[ \t]+", " ", _digits(t.replace("_", " ")))
+    # "a box of jell o gelatin": the catalog's "gelatin box" / "box of gelatin", brand words dropped
+    def container_of(m: re.Match[str]) -> str:
+        kind, words = m.group(1), m.group(2).split()
+        for k in range(len(words)):
+            rest = " ".join(words[k:])
+            for form in (f"{rest} {kind}", f"{kind} of {rest}"):
+                if form in vocab.canonical:
+                    return form
+        return m.group(0)
+
+    t = re.sub(r"\b(box|can|bottle|jar|tin|pack|packet|carton|bag) of ((?:[a-z]+ ){0,2}[a-z]+)\b", container_of, t)
     # Names such as 'cup with a handle' must survive clause splitting at 'with'.
     for name in vocab.names:
         if "~" in name:
