@@ -90,7 +90,10 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     if nums:
         m = nums[0]
         raw = m.group(0)
-        value = float(re.match(NUM, raw.strip()).group(0))  # type: ignore[union-attr]
+        number = re.match(NUM, raw.strip())
+        if number is None:  # the pattern that found ``raw`` starts with a number; kept for the type
+            raise ValueError(f"no number at the start of {raw!r}")
+        value = float(number.group(0))
         suffix = m.group(1)
         explicit_sign = raw.strip()[0] in "+-"
         if suffix == "%":

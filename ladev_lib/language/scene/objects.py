@@ -87,7 +87,8 @@ def _reference(vocab: Vocabulary, rest: str, strict: bool) -> tuple[str, int] | 
 
 def find_region(text: str) -> tuple[str, str] | None:
     text = re.sub(r"\bright(?=\s+(?:in|at|on|next|by|beside|near|there|here|now|behind|against)\b)", " ", text)
-    horizontal = vertical = None
+    horizontal: str | None = None
+    vertical: str | None = None
     spans: list[tuple[int, int]] = []
     for m in re.finditer(r"\b(left|right)(?:\s*(?:hand|-hand))?\b", text):
         horizontal = m.group(1)
@@ -107,14 +108,15 @@ def find_region(text: str) -> tuple[str, str] | None:
     centre = re.search(r"\b(middle|center|centre|centered|centred|central)\b", text)
     if horizontal is None and vertical is None and centre is None:
         return None
-    if horizontal is None and vertical is None:
+    region: str
+    if horizontal is not None and vertical is not None:
+        region = f"{vertical}_{horizontal}"
+    elif horizontal is not None or vertical is not None:
+        region = horizontal or vertical or ""
+    else:
         region = "center"
         assert centre is not None
         spans.append(centre.span())
-    elif horizontal and vertical:
-        region = f"{vertical}_{horizontal}"
-    else:
-        region = horizontal or vertical  # type: ignore[assignment]
     for a, b in sorted(spans, reverse=True):
         text = text[:a] + " " + text[b:]
     text = re.sub(r"\b(?:on|at|in|to|towards?|toward)\s+the\s+(?:side|corner|edge|part)?\b", " ", text)
