@@ -14,7 +14,7 @@ media under ``paths.media_dir/<label>/`` and the persistent store
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -55,6 +55,28 @@ class RolloutStageResult:
     def exit_code(self) -> int:
         """Non-zero only when more episodes ended in error than the configuration tolerates."""
         return 1 if self.summary.error_rate > self.max_error_rate else 0
+
+
+def keep_only_this_studys_media(media_dir: Path, archive: Path, rows: Sequence[EpisodeRow]) -> None:
+    """Make the stage's media folder hold exactly the files its episode rows name.
+
+    Media of stored episodes outlive the study that made them (a study that shrinks and
+    grows back reuses its episodes, pictures included), but the DVC output must not carry
+    files of episodes no longer planned: they would make the output's hash depend on the
+    history of runs. Files no row names move to ``archive`` (beside the episode store);
+    files a row names that lie in the archive move back.
+    """
+    named = {
+        Path(p).name for r in rows for p in (r.first_frame_path, r.last_frame_path, r.video_path) if p
+    }
+    for name in named:
+        kept = archive / name
+        if not (media_dir / name).exists() and kept.exists():
+            kept.replace(media_dir / name)
+    for f in media_dir.iterdir():
+        if f.is_file() and not f.name.startswith(".") and f.name not in named:
+            archive.mkdir(parents=True, exist_ok=True)
+            f.replace(archive / f.name)
 
 
 def policy_config(cfg: dict[str, Any], label: str) -> PolicyConfig:
@@ -162,6 +184,9 @@ def rollout_stage(
     finally:
         store.close()
     table = write_table(rows, _path(cfg, "episodes_dir", root) / f"{label}.parquet", EpisodeRow)
+    keep_only_this_studys_media(
+        Path(media.root), _path(cfg, "episode_store_dir", root) / label / "media", rows
+    )
     timings = None
     if "timings_dir" in (cfg.get("paths") or {}):
         timings = write_table(
