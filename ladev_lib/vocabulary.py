@@ -64,10 +64,6 @@ def as_robot(value: str) -> Robot:
     return narrow(value, ROBOTS, "robot")
 
 
-def as_role(value: str) -> Role:
-    return narrow(value, ROLES, "role")
-
-
 def as_object_set(value: str) -> ObjectSetName:
     return narrow(value, OBJECT_SETS, "object set")
 
@@ -78,7 +74,3 @@ def as_factor(value: str) -> Factor:
 
 def as_environment(value: str) -> Environment:
     return narrow(value, ENVIRONMENTS, "environment")
-
-
-def as_control(value: str) -> ControlKind:
-    return narrow(value, CONTROL_KINDS, "control")

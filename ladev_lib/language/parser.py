@@ -284,9 +284,12 @@ def _completes_destination(a: _Action, b: _Action) -> bool:
 
 
 class _Composer:
-    def __init__(self, text: str, clauses: list[Clause]) -> None:
+    def __init__(self, text: str, clauses: list[Clause], in_scene: bool = False) -> None:
         self.text = text
         self.clauses = clauses
+        self.in_scene = in_scene
+        """Read in a scene's context: two phrases the catalog reads as one object ("the small
+        bowl", "the large bowl") may be two objects of the scene; grounding tells."""
         self.reasons: list[str] = []
 
     def compose(self) -> Frame:
@@ -324,7 +327,8 @@ class _Composer:
                 dropped.append("destination")
         src_id = source.object_id if source else None
         tgt_id = target.object_id if target else None
-        if src_id is not None and src_id == tgt_id:
+        told_apart = self.in_scene and source is not None and target is not None and source.words != target.words
+        if src_id is not None and src_id == tgt_id and not told_apart:
             self.reasons.append(f"the same object is source and destination: {_shown(src_id)}")
         repeat = next((c.repeat for c in self.clauses if c.repeat), None)
         if repeat:
@@ -548,7 +552,7 @@ class InstructionParser:
             for r in c.refs()
             if r.free and r.object_id is not None and r.free_problem
         }
-        return _Composer(text, clauses).compose(), problems
+        return _Composer(text, clauses, in_scene=scene is not None).compose(), problems
 
     def canonical_text(self, text: str) -> str:
         """The instruction with every object name replaced by its display name.

@@ -24,7 +24,7 @@ Every verdict keeps both frames and the grounding of each phrase.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
@@ -155,21 +155,6 @@ def structure_mismatch(expected: InstructionParse, got: InstructionParse) -> str
     return None
 
 
-_SAME_OBJECT = "the same object is source and destination"
-
-
-def _settled_by_scene(frame: Frame, groundings: Sequence[Grounding | None]) -> Frame:
-    """A frame whose object and destination the catalog reads as one object ("the small bowl",
-    "the large bowl": the catalog's one bowl) but the scene grounds on two: understood."""
-    if not frame.reason or _SAME_OBJECT not in frame.reason:
-        return frame
-    obj, dest = groundings
-    if obj is None or dest is None or obj.object_id is None or dest.object_id is None or obj.object_id == dest.object_id:
-        return frame
-    rest = [r for r in frame.reason.split("; ") if not r.startswith(_SAME_OBJECT)]
-    return replace(frame, reason="; ".join(rest) or None)
-
-
 def frame_mismatch(
     expected: Frame, got: Frame, grounder: Grounder, scene: Sequence[SceneObject] | None
 ) -> tuple[str | None, list[Grounding | None], list[Grounding | None]]:
@@ -180,11 +165,13 @@ def frame_mismatch(
         g_exp[k] = grounder.ground(phrase, scene) if phrase is not None else None
     for k, phrase in enumerate((got.object, got.destination)):
         g_got[k] = grounder.ground(phrase, scene) if phrase is not None else None
-    expected, got = _settled_by_scene(expected, g_exp), _settled_by_scene(got, g_got)
     if not expected.ok:
         return f"original not understood: {expected.reason}", g_exp, g_got
     if not got.ok:
         return f"candidate not understood: {got.reason}", g_exp, g_got
+    for which, (obj, dest) in (("original", g_exp), ("candidate", g_got)):
+        if obj is not None and dest is not None and obj.object_id is not None and obj.object_id == dest.object_id:
+            return f"{which} not understood: the same object is source and destination: {obj.object_id}", g_exp, g_got
     if got.task != expected.task:
         return f"task changed: {expected.task} -> {got.task}", g_exp, g_got
     if expected.object is None or got.object is None:

@@ -10,6 +10,7 @@ a requested position keep it; the rest are drawn uniformly in the workspace
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -147,33 +148,38 @@ def _nudge_fixed(
     """(x, y, yaw) for the objects at given coordinates, each moved as little as it must, in request order."""
     out: dict[int, tuple[float, float, float]] = {}
     prints: list[Footprint] = []
-    step = 0.005
     for i in fixed:
         r = requests[i]
         assert r.x is not None and r.y is not None
         turns = [yaws[i]] if r.yaw_deg is not None else [*_TURNS, yaws[i]]
-        spot = None
-        for k in range(int(round(nudge_m / step)) + 1):
-            radius = k * step
-            angles = [0.0] if k == 0 else [2 * math.pi * a / (8 * k) for a in range(8 * k)]
-            for a in angles:
-                x, y = r.x + radius * math.cos(a), r.y + radius * math.sin(a)
-                if not (workspace_x[0] <= x <= workspace_x[1] and workspace_y[0] <= y <= workspace_y[1]) and k > 0:
-                    continue
-                for yaw in turns:
-                    fp = footprint(r.obj, x, y, yaw, grow)
-                    if not any(overlaps(fp, other) for other in prints):
-                        spot = (round(x, 4), round(y, 4), yaw, fp)
-                        break
-                if spot is not None:
-                    break
-            if spot is not None:
-                break
+        spot = next(
+            (
+                fp
+                for x, y in _rings(r.x, r.y, nudge_m, workspace_x, workspace_y)
+                for fp in (footprint(r.obj, x, y, yaw, grow) for yaw in turns)
+                if not any(overlaps(fp, other) for other in prints)
+            ),
+            None,
+        )
         if spot is None:
             return None
-        out[i] = spot[:3]
-        prints.append(spot[3])
+        out[i] = (round(spot.x, 4), round(spot.y, 4), spot.yaw_deg)
+        prints.append(spot)
     return out
+
+
+def _rings(
+    x0: float, y0: float, reach_m: float, workspace_x: tuple[float, float], workspace_y: tuple[float, float],
+    step: float = 0.005,
+) -> Iterator[tuple[float, float]]:
+    """The given point, then points on rings ``step`` apart out to ``reach_m`` (inside the workspace)."""
+    yield x0, y0
+    for k in range(1, int(round(reach_m / step)) + 1):
+        for a in range(8 * k):
+            angle = 2 * math.pi * a / (8 * k)
+            x, y = x0 + k * step * math.cos(angle), y0 + k * step * math.sin(angle)
+            if workspace_x[0] <= x <= workspace_x[1] and workspace_y[0] <= y <= workspace_y[1]:
+                yield x, y
 
 
 def place_objects(
