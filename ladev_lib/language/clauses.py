@@ -24,8 +24,13 @@ TASK_OF_RELATION: dict[str, str] = dict(RELATION_TASKS)
 PLACEMENT = PLACEMENT_RELATIONS
 FREE = "~"
 """Prefix of the key of a free noun phrase (one the catalog does not name): "~wine bottle"."""
-GRIPPER_WORDS = frozenset({"gripper", "grippers", "hand", "fingers", "claw", "claws", "jaws", "jaw", "grip", "pincers"})
+GRIPPER_WORDS = frozenset(
+    {"gripper", "grippers", "hand", "fingers", "claw", "claws", "jaws", "jaw", "grip", "pincers", "arm", "wrist", "effector"}
+)
 GRIP_VERBS = frozenset({"close", "open", "shut", "squeeze", "tighten", "clamp", "wrap", "loosen", "relax"})
+_CLOSING = frozenset({"close", "shut", "tighten", "clamp", "wrap"})
+_GRIPPED_BY = frozenset({"on", "around", "round", "about", "onto", "over"})
+"""The relation words after "close the gripper" that name what it grasps ("... *around* the can")."""
 
 
 # -- clause structure -------------------------------------------------------------
@@ -45,6 +50,8 @@ class Ref:
     """The phrase's content words (no determiner), for its noun phrase."""
     free_problem: str | None = None
     """Why a free phrase (key ``~...``) names no one catalog object, for the catalog-only view."""
+    candidates: tuple[str, ...] = ()
+    """The catalog objects a free phrase fits when the catalog reads it as several ("the can")."""
 
     @property
     def free(self) -> bool:
@@ -86,6 +93,8 @@ class Clause:
     alternatives: bool = False
     repeat: str | None = None
     reverse_pick: bool = False
+    covers: bool = False
+    """ "cover the pot with the lid": the lid is put on the pot (roles read back to front)."""
     """A pick verb with a "from"/"off" phrase ("lift the bowl from the stove")."""
     unknown_verb: str | None = None
     """An unlisted word in verb position after "and" / "then" (read as an action outside the tasks)."""
@@ -168,6 +177,8 @@ class ClauseReader:
     def __init__(self, index: NameIndex, scene: frozenset[str] | None) -> None:
         self.index = index
         self.scene = scene
+        self._last_head: str | None = None
+        """The head noun of the last object phrase read, for "the pink *one*"."""
 
     def read(self, clause: Clause) -> Clause:
         self._structure(clause)
@@ -249,6 +260,7 @@ class ClauseReader:
         c.verb = _main_verb(verbs)
         c.alternatives = saw_or and len({r.object_id or r.text for r in c.refs()}) > 1
         _with_as_source(c)
+        _cover_with(c)
         self._placement_words(c)
 
     def _placement_words(self, c: Clause) -> None:
@@ -311,8 +323,14 @@ class ClauseReader:
                     Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note, words=tuple(words))
                 )
                 start = k + 1
+                self._last_head = words[-1]
             return refs, []
         words = [w for t in content for w in t.text.split()]
+        if len(words) > 1 and words[-1] == "one" and self._last_head is not None:
+            words[-1] = self._last_head  # "the green brick near the pink one": the pink brick
+            text = " ".join(words)
+        elif words and words[-1] != "one":
+            self._last_head = words[-1]
         full = tuple(words)
         if "of" in words[:-1]:
             words = words[len(words) - words[::-1].index("of") :]  # "can of coca cola" -> "coca cola"
@@ -339,12 +357,15 @@ class ClauseReader:
         if found is None or (
             found.object_id is None
             and found.problem
-            and ("no known" in found.problem or unknown_modifier or (self.scene is not None and "plural" not in found.problem))
+            and ("no known" in found.problem or unknown_modifier or "plural" not in found.problem)
         ):
             # a noun phrase the catalog does not name (or names ambiguously): free text, grounded later
             free = _free_words(full)
             problem = found.problem if found is not None else f"'{text}' names no known object"
-            return [Ref(text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem)], []
+            candidates = found.candidates if found is not None else ()
+            return [
+                Ref(text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem, candidates=candidates)
+            ], []
         return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note, words=full)], []
 
     def _is_modifier(self, content: list[Token], k: int) -> bool:
@@ -371,7 +392,14 @@ class ClauseReader:
         if c.verb is not None and c.verb.lemma in GRIP_VERBS and any(
             p.split()[-1] in GRIPPER_WORDS for p in c.bare_places
         ):
-            return "preamble"  # "close the gripper around it": a step of grasping, not another task
+            held = [g for g in c.governed if g.phrase in _GRIPPED_BY and g.refs]
+            if c.verb.lemma in _CLOSING and not c.bare and len(held) == 1:
+                c.bare.extend(held[0].refs)  # "close the gripper around the can": grasps the can
+                c.governed.remove(held[0])
+                return "pick"
+            return "preamble"  # "open the gripper": a step of the motion, not another task
+        if c.covers:
+            return "place"
         has_ref = bool(c.bare)
         object_places = [g for g in c.placements() if g.refs]
         reverse = [g for g in c.governed if g.relation == "reverse" and g.refs]
@@ -391,7 +419,9 @@ class ClauseReader:
         if cls == "pick":
             if reverse or (reverse_particle and not object_places):
                 c.reverse_pick = bool(reverse) and not c.recipient
-                return "other"
+                if c.reverse_pick and not object_places and verb.lemma in lx.LIFT_VERBS:
+                    return "pick"  # "lift the hammer off the bench": picked up from where it lies
+                return "other"  # "take the carrot off the plate": takes it away (merged before a placement)
             if any(g.directional or verb.lemma in lx.PICK_PLACES_WITH_STATIVE for g in object_places):
                 return "place"
             return "pick"
@@ -445,3 +475,19 @@ def _with_as_source(c: Clause) -> None:
         if g.phrase == "with" and len(g.refs) == 1:
             c.bare.append(g.refs.pop())
             return
+
+
+_COVER_VERBS = frozenset({"cover", "cap", "top"})
+
+
+def _cover_with(c: Clause) -> None:
+    """ "cover the pot with the lid": put the lid on the pot."""
+    if c.verb is None or c.verb.lemma not in _COVER_VERBS or len(c.bare) != 1:
+        return
+    withs = [g for g in c.governed if g.phrase == "with" and len(g.refs) == 1]
+    if len(withs) != 1 or c.placements():
+        return
+    covered = c.bare.pop()
+    c.bare.append(withs[0].refs[0])
+    withs[0].relation, withs[0].phrase, withs[0].directional, withs[0].refs = "on", "on", True, [covered]
+    c.covers = True

@@ -55,6 +55,9 @@ class NounPhrase:
     """The catalog id when the phrase is a catalog name or synonym; None for free text."""
     qualifiers: tuple[Qualifier, ...] = ()
     """Relations that locate or specify it ("the black bowl *next to the ramekin*")."""
+    candidates: tuple[str, ...] = ()
+    """For a free phrase the catalog reads as several objects ("the can"): those objects. It
+    names none of them until a scene tells which."""
 
     @property
     def free(self) -> bool:
@@ -67,6 +70,7 @@ class NounPhrase:
             "modifiers": list(self.modifiers),
             "object_id": self.object_id,
             "qualifiers": [q.as_dict() for q in self.qualifiers],
+            "candidates": list(self.candidates),
         }
 
 

@@ -170,6 +170,8 @@ class Grounder:
         by_group = False
         if obj.catalog_id is not None and head in lx.HYPERNYMS:
             by_group = obj.catalog_id in self.index._candidates(head)
+        elif obj.catalog_id is None and head in lx.PLAIN_HYPERNYMS:
+            by_group = bool(heads & lx.PLAIN_HYPERNYMS[head])
         if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
             if phrase.object_id is None or phrase.object_id == obj.catalog_id:
                 return False
@@ -274,7 +276,13 @@ class Grounder:
         return not unknown and self.index.compatible(object_id, list(phrase.modifiers))
 
     def _same_text(self, a: NounPhrase, b: NounPhrase, id_a: str | None, id_b: str | None) -> bool:
-        """Two phrases at least one of which is free: by head noun, else by embedding."""
+        """Two phrases at least one of which is free: by head noun, else by embedding.
+
+        A free phrase that fits several catalog objects ("the can", "the bottle") does not
+        say which one, so it never equals one of them; two such phrases compare as text."""
+        for free, grounded in ((a, id_b), (b, id_a)):
+            if grounded is not None and len(free.candidates) > 1:
+                return False
         if id_a is not None and self._fits_catalog(b, id_a) or id_b is not None and self._fits_catalog(a, id_b):
             return True
         if lx.position_word(_singular(a.head)) == lx.position_word(_singular(b.head)):

@@ -32,9 +32,9 @@ _PLACE = (
 _OTHER = (
     "knock tip topple open close shake squeeze eat peel point touch tap poke hit kick spin rotate "
     "turn flip wipe clean wash wrap cover hand give pass show write cut pour fill empty crush break "
-    "smash remove unstack unload tilt stir bite lick smell juggle balance bounce play"
+    "smash remove unstack unload tilt stir bite lick smell juggle balance bounce play cap"
 )
-_PREAMBLE = "find locate look spot identify see notice reach approach head use watch check"
+_PREAMBLE = "find locate look spot identify see notice reach approach head use watch check steer guide clamp tighten"
 _RELEASE = "release"
 
 MANNER_VERBS: frozenset[str] = frozenset(
@@ -116,6 +116,9 @@ VERBS: dict[str, tuple[str, str]] = _verb_table(
 )
 """Inflected form -> (class, lemma). A word in two classes keeps the first listed."""
 
+# Pick verbs that still pick up with a "from" / "off" phrase ("lift the hammer off the bench");
+# "take the carrot off the plate" takes it away instead.
+LIFT_VERBS = frozenset({"pick", "lift", "grab", "grasp", "raise", "hoist", "seize", "snatch", "pluck", "scoop", "grip"})
 # Verbs of the pick class that place when given any relation to an object
 # ("get the carrot on the plate"), not only a directional one.
 PICK_PLACES_WITH_STATIVE = frozenset({"get"})
@@ -181,8 +184,8 @@ DIRECTIONAL = frozenset(
 # carries the object there when what it is carried to is a receptacle or a surface:
 # "move the mug to the tray" puts it on the tray, "bring the apple to the basket"
 # puts it in the basket. Other nouns keep "near" ("move the stapler to the laptop").
-CARRY_VERBS = frozenset({"move", "bring", "carry", "take", "transfer", "transport", "relocate"})
-"""Verbs (lemmas) that carry an object to where "to" points."""
+CARRY_VERBS = frozenset({"move", "bring", "carry", "take", "transfer", "transport", "relocate", "go", "belong", "end", "land"})
+"""Verbs (lemmas) that carry an object to where "to" points ("the cup goes to the tray": it is carried there)."""
 CARRY_TO = frozenset({("to",)})
 """Relation phrases that, after a carrying verb, end at a receptacle ("over to" stays near)."""
 SURFACE_HEADS = frozenset(
@@ -323,6 +326,8 @@ HYPERNYMS: dict[str, tuple[str, ...]] = {
     "drink": ("set:simpler&category:can",),
     "beverage": ("set:simpler&category:can",),
     "container": ("category:container",),
+    "vessel": ("category:container",),
+    "receptacle": ("category:container",),
     "utensil": ("category:utensil",),
     "block": ("category:block",),
     "ball": ("category:ball",),
@@ -331,6 +336,12 @@ HYPERNYMS: dict[str, tuple[str, ...]] = {
     "tool": ("category:tool",),
 }
 """Generic nouns and the catalog groups they can stand for."""
+
+PLAIN_HYPERNYMS: dict[str, frozenset[str]] = {
+    "container": CONTAINER_HEADS, "vessel": CONTAINER_HEADS, "receptacle": CONTAINER_HEADS,
+    "surface": SURFACE_HEADS,
+}
+"""The same for objects named in plain words (not catalog ids): the head nouns a generic noun covers."""
 
 PART_NOUNS = frozenset(
     ["slice", "slices", "piece", "pieces", "peel", "juice", "seed", "seeds", "stem", "leaf", "label", "cap", "handle", "half", "bag", "bunch", "pile", "stack", "wrapper", "box", "bottle", "can", "cans"]

@@ -44,6 +44,8 @@ class ObjectRef:
     """Why it is not resolved: ambiguous, plural, unknown."""
     note: str | None = None
     """How it was resolved when not by an exact name ("'the can' -> coke_can (scene)")."""
+    candidates: tuple[str, ...] = ()
+    """The catalog objects an ambiguous phrase fits."""
 
 
 @dataclass(frozen=True)
@@ -176,7 +178,7 @@ class NameIndex:
             if len(fitting) > 1:
                 shown = ", ".join(self.display_name(o) for o in fitting[:4])
                 more = f" and {len(fitting) - 4} more" if len(fitting) > 4 else ""
-                return ObjectRef(text, problem=f"'{text}' is ambiguous: {shown}{more}")
+                return ObjectRef(text, problem=f"'{text}' is ambiguous: {shown}{more}", candidates=tuple(fitting))
         return ObjectRef(text, problem=f"'{text}' names no known object")
 
     def prefer_scene(

@@ -118,7 +118,7 @@ def _mark_qualifiers(act: _Action) -> None:
         return
     potential: list[Governed] = []
     for c in act.clauses:
-        merged_pick = act.kind == "place" and (c.kind == "pick" or c.reverse_pick)
+        merged_pick = (act.kind == "place" and c.kind == "pick") or c.reverse_pick
         prev: Governed | None = None
         for g in c.governed:
             if g.qualifier is not None:
@@ -242,7 +242,7 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return None
     picked_from = a.kind == "other" and all(c.reverse_pick for c in a.clauses)
     if (a.kind == "pick" or picked_from) and b.kind in ("place", "pick"):
-        return _Action(b.kind, both)
+        return _Action(b.kind, both)  # "grab the hammer and lift it off the bench": one pick-up
     reordered = any((c.intro or "") in ("after", "before", "once") for c in both)
     if reordered and {a.kind, b.kind} == {"pick", "place"}:
         return _Action("place", both)  # "put it on the plate after picking up the carrot"
@@ -378,7 +378,7 @@ class _Composer:
             words = tuple(ref.object_id[len(FREE) :].split())
         words = words or (ref.text,)
         return NounPhrase(
-            " ".join(words), words[-1], tuple(words[:-1]), None if free else ref.object_id, quals
+            " ".join(words), words[-1], tuple(words[:-1]), None if free else ref.object_id, quals, ref.candidates
         )
 
     def _roles(self, act: _Action) -> tuple[str | None, Ref | None, Ref | None]:

@@ -136,9 +136,43 @@ def _match_phrase(
     return None
 
 
+_BE_WORDS = frozenset({"is", "s", "was", "will", "would", "be"})
+
+
+def _unfold_where(words: list[str]) -> list[str]:
+    """Pseudo-clefts in the plain order: "next to the notebook is where the glue stick goes"
+    -> "the glue stick goes next to the notebook"; "the plate is where the carrot should go"
+    -> "... go to the plate"; "where the apple belongs is the basket" likewise. One sentence
+    at a time; anything else is left as written."""
+    out: list[str] = []
+    start = 0
+    for end in [*(k for k, w in enumerate(words) if w in _SENTENCE_END), len(words)]:
+        out.extend(_unfold_sentence(words[start:end]))
+        out.extend(words[end : end + 1])
+        start = end + 1
+    return out
+
+
+def _unfold_sentence(s: list[str]) -> list[str]:
+    if "where" not in s:
+        return s
+    w = s.index("where")
+    if w > 0 and s[w - 1] in _BE_WORDS and w + 1 < len(s):  # "A is where B"
+        place, rest = s[: w - 1], s[w + 1 :]
+    elif w == 0 and any(x in _BE_WORDS for x in s[2:]):  # "where B is A"
+        k = max(i for i, x in enumerate(s) if x in _BE_WORDS and i > 1)
+        place, rest = s[k + 1 :], s[1:k]
+    else:
+        return s
+    if not place or not rest or place[-1] == ",":
+        return s
+    related = any(tuple(place[:n]) in lx.RELATIONS for n in range(1, lx.RELATION_MAX_LEN + 1))
+    return [*rest, *(place if related else ["to", *place])]
+
+
 def tag_tokens(text: str, index: NameIndex) -> list[Token]:
     """The tagged tokens of an instruction."""
-    words = _rewrite_phrasal(_rewrite(words_of(text), _DROP))
+    words = _rewrite_phrasal(_rewrite(_unfold_where(words_of(text)), _DROP))
     tokens: list[Token] = []
     i = 0
     while i < len(words):
@@ -169,7 +203,8 @@ def tag_tokens(text: str, index: NameIndex) -> list[Token]:
             )
             i += len(phrase)
             continue
-        tokens.append(_tag_word(w, prev, after_det, words, i, index))
+        compound = prev is not None and prev.kind == "WORD" and len(tokens) > 1 and tokens[-2].kind in ("DET", "QUANT")
+        tokens.append(_tag_word(w, prev, after_det or _noun_head(w, compound, words, i, index), words, i, index))
         i += 1
     return tokens
 
@@ -189,6 +224,15 @@ def _relation_at(words: list[str], i: int, index: NameIndex) -> tuple[tuple[str,
             return None  # a particle: "put it down", "take it out"
         return phrase, kind
     return None
+
+
+def _noun_head(w: str, compound: bool, words: list[str], i: int, index: NameIndex) -> bool:
+    """A verb's base form ending a determined noun phrase is its head noun: "the glue *stick*
+    should go ...", "the cake *stand*" (not when an object follows: "the kid, stack the cups")."""
+    if not compound or w not in lx.VERBS or lx.VERBS[w][1] != w:
+        return False
+    nxt = words[i + 1] if i + 1 < len(words) else ""
+    return nxt not in lx.PRONOUNS and nxt not in lx.DETERMINERS and not _starts_phrase(words, i + 1, index)
 
 
 def _tag_word(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from ladev_lib.language.frames import Frame, NounPhrase, read_instruction
+from ladev_lib.language.parser import default_parser
 from ladev_lib.language.tasks import NOT_A_TASK, TASKS, needs_destination, task_of_relation
 
 
@@ -58,8 +59,12 @@ def test_catalog_names_keep_their_ids_and_free_phrases_have_none():
 
 
 def test_a_head_noun_resolves_against_the_scene():
-    # "the can" is ambiguous in the catalog, one object in this scene
-    assert not read_instruction("pick up the can").ok
+    # "the can" is ambiguous in the catalog: without a scene it stays a free phrase (it names
+    # no one catalog object, and the catalog view says why); in this scene it is one object
+    frame = read_instruction("pick up the can")
+    assert frame.ok and frame.object is not None and frame.object.free and frame.object.head == "can"
+    parse = default_parser().parse("pick up the can")
+    assert not parse.ok and parse.reason is not None and "ambiguous" in parse.reason
     frame = read_instruction("pick up the can", ["coke_can", "plate"])
     assert frame.ok and frame.object is not None and frame.object.object_id == "coke_can"
 
@@ -102,3 +107,35 @@ def test_filler_words_are_not_objects():
     for text in ("would you mind laying the carrot on the plate", "Your task is to pick the pepsi can up"):
         frame = read_instruction(text)
         assert frame.ok, (text, frame.reason)
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # a pick spelled out as gripper motions: closing the gripper on a thing grasps it
+        ("steer the gripper over the stapler, clamp the gripper around it and raise the arm", ("pick_up", "stapler", None)),
+        ("close your fingers on the whisk, then lift", ("pick_up", "whisk", None)),
+        # lifting something off where it lies is still picking it up; taking it off is not
+        ("hoist the crate off the pallet", ("pick_up", "crate", None)),
+        ("seize the ladle and raise it from the stove", ("pick_up", "ladle", None)),
+        ("take the ladle off the stove", ("other", "ladle", None)),
+        # pseudo-clefts: the place first, or "where ..." first
+        ("beside the kettle is where the teacup belongs", ("move_near", "teacup", "kettle")),
+        ("the tray is where the teacup should end up", ("put_on", "teacup", "tray")),
+        ("where the spatula goes is the drawer", ("put_in", "spatula", "drawer")),
+        # "cover X with Y" puts Y on X
+        ("cover the casserole with the towel", ("put_on", "towel", "casserole")),
+        # "the blue one": the noun of the phrase before it
+        ("slide the red crayon next to the blue one", ("move_near", "red crayon", "blue crayon")),
+        # a verb's base form closing a noun phrase is its head noun
+        ("pick up the glue stick", ("pick_up", "glue stick", None)),
+    ],
+)
+def test_general_forms_over_free_phrases(text, expected):
+    frame = read_instruction(text)
+    task, obj, dest = expected
+    assert frame.task == task, frame.reason
+    assert frame.object is not None and frame.object.text == obj
+    assert (frame.destination.text if frame.destination else None) == dest
+    if task != "other":
+        assert frame.ok, frame.reason

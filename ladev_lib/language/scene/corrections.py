@@ -1,6 +1,6 @@
 """Self-corrections and take-backs in a scene description, read as the writer means them.
 
-    text, dropped = apply_corrections(text, vocab)
+    text, dropped, replaced = apply_corrections(text, vocab)
 
 - "a bowl - no, make that a basket", "pan right 3 degrees - sorry, left: pan
   left 3 degrees", "5 cm to the right - hmm, not enough, make it 8 cm": what
@@ -13,7 +13,9 @@
   trade places (the reader swaps them at ``@swap@``);
 - "drop the pepsi can", "scratch the softball", "remove the mug", "leave out
   the lemon": an object described earlier is taken out (``dropped`` lists the
-  names, in order; the reader removes the last such object it read).
+  names, in order; the reader removes the last such object it read); one
+  replaced at once ("scratch the pear, make it a peach") is also in
+  ``replaced``: the count of objects stays.
 
 The text is normalised (lower case, digits) when this runs.
 """
@@ -44,8 +46,15 @@ _REMOVE_VERB = (
 )
 
 
-def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
-    """The text with taken-back statements removed, and the objects taken out by name."""
+_REPLACED_BY = re.compile(
+    r"\s*[,;:]?\s*(?:and\s+)?(?:make (?:it|that)|replace (?:it|that)? ?with|use|put|swap (?:it|that)? ?for|instead)\b"
+    r"(?:\s+(?:a|an|the)\s+)?"
+)
+
+
+def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], list[str]]:
+    """The text with taken-back statements removed, the objects taken out by name, and those of
+    them that another object replaces."""
     out = text
     # 1. "X - no, make that Y": drop X (from its clause start) and the marker.
     for _ in range(8):
@@ -94,13 +103,30 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
             return " a "
         return " the "
 
+    def taken_back(m: re.Match[str]) -> str:
+        # "a fork, a spoon and a knife, but not the knife after all": said before, taken back
+        said = re.search(rf"(?<![a-z]){re.escape(m.group(1))}(?![a-z])", out[: m.start()])
+        if said is not None:
+            dropped.append(m.group(1))
+        return " "
+
+    out = re.sub(
+        rf"\b(?:but\s+)?(?:not|no)\s+(?:a|an|the|that)?\s*({names})\s+"
+        r"(?:after all|anymore|any more|on second thought|now|either)\b",
+        taken_back, out,
+    )
     out = re.sub(rf"{negation}(?:a|an|the|any)?\s*({names})\s*,\s*(?:but\s+)?(?:a|an)\s+", instead, out)
     out = re.sub(rf"{negation}(?:a|an|the|any)?\s*{names}\s*,?", " ", out)
     out = re.sub(rf"\bnot\s+(?:near|next to|beside|by|on|in|behind|left of|right of)\s+(?:the|a|an)\s+{names}", " ", out)
     # 3. "drop the pepsi can": an object described before is taken out.
 
+    replaced: list[str] = []
+
     def take_out(m: re.Match[str]) -> str:
         dropped.append(m.group("name"))
+        follow = _REPLACED_BY.match(out, m.end())
+        if follow is not None and vocab.name_pattern.match(out, follow.end()):
+            replaced.append(m.group("name"))
         return " "
 
     out = re.sub(
@@ -121,7 +147,7 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str]]:
         rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<word>[a-z0-9]+)(?=\s*(?:$|[,;.!]|\band\b))",
         take_out_by_word, out,
     )
-    return out, dropped
+    return out, dropped, replaced
 
 
 def _has_content_after(text: str, pos: int) -> bool:

@@ -290,7 +290,7 @@ class _Reader:
             self.out.random_positions.append(None)
             consumed = True
             text = text.replace(m.group(0), " ", 1)
-        if not consumed and re.fullmatch(r"\s*(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
+        if not consumed and re.fullmatch(r"\s*(?:[+*\u2022-]\s*|add\s+|plus\s+)?(?:\d+\s+)?(?:random|other|more|any)\s*(?:ones?)?\s*", text):
             n_match = re.search(r"\d+", text)
             n = int(n_match.group(0)) if n_match else 1
             self.out.randoms += n
@@ -470,7 +470,7 @@ def read_description(
     (a type alone). Task statements are taken out of the text either way.
     """
     found = find_task(description or "", vocab.ids)
-    text, dropped = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
+    text, dropped, replaced = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
     task_objects = tuple(
         str(found.task[k]) for k in ("source", "target") if found.task is not None and found.task.get(k)
@@ -481,7 +481,7 @@ def read_description(
         idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]
         if idx:
             del reading.objects[idx[-1]]
-            if reading.total is not None:
+            if reading.total is not None and name not in replaced:
                 reading.total -= 1  # "three objects: a, b and c. drop c": two
 
     out: dict[str, Any] = {"schema_version": 1, "operations": []}

@@ -73,7 +73,8 @@ BACK_LABEL = re.compile(
     re.IGNORECASE,
 )
 IMPERATIVE = re.compile(
-    rf"^\s*(?:(?:please|now|then|and|just|finally|simply|so|also|next)\s*,?\s+)*(?={_VERB}\b)", re.IGNORECASE
+    rf"^\s*(?:(?:please|now|then|and|just|finally|simply|so|also|next|oh|ok|okay|well|alright|lastly)\s*,?\s+)*(?={_VERB}\b)",
+    re.IGNORECASE,
 )
 _INDEFINITE = re.compile(
     r"^\s*(?:up\s+)?(?:a|an|one|two|three|four|five|six|some|several|\d+|another|any|random)\b", re.IGNORECASE
@@ -88,7 +89,11 @@ _SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\
 
 INLINE_LABEL = re.compile(
     r"\s*[(,]?\s*(?:that|this)(?:'s|s|\s+is)\s+(?:the\s+)?(?:robot'?s?\s+|arm'?s?\s+|its\s+)?"
-    r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)\b\s*\)?",
+    r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)\b\s*\)?"
+    # "..., that's what I want the robot to do" / "that is what the arm should do"
+    r"|\s*[(,]?\s*(?:that|this)(?:'s|s|\s+is)\s+what\s+(?:(?:i|we)(?:'d|\s+would)?\s+(?:want|need|like|expect)\s+"
+    r"(?:the\s+)?(?:robot|arm|it|agent|policy)\s+to\s+do|(?:the\s+)?(?:robot|arm|it|agent|policy)\s+"
+    r"(?:should|must|has\s+to|needs\s+to|will)\s+do)\b\s*\)?",
     re.IGNORECASE,
 )
 _GOES = re.compile(
@@ -219,6 +224,8 @@ def _read_one(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
     if not text:
         return None
     frame = reader(text)
+    if any(p is not None and p.candidates for p in (frame.object, frame.destination)):
+        return None  # "the cup" with several cups in the catalog: only the scene can say which
     if frame.task in TASKS and frame.object is not None and frame.ok:
         if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
             return None

@@ -80,6 +80,7 @@ _COORD3 = re.compile(rf"[\(\[]\s*({NUM})\s*,\s*({NUM})\s*,\s*({NUM})\s*[\)\]]")
 COUNT_TOTAL = re.compile(
     r"(?:\b(?:number of objects|num_objects|n_objects|objects|object count|count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)\b)"
     r"|(?:\b(?:a total of|total of|in total|altogether)\s*(\d+)\b)"
+    r"|(?:\b(\d+)\s+(?:(?:objects?|items?|things?)\s+)?(?:in all|in total|total|altogether)\b)"
     r"|(?:\b(\d+)\s+(?:(?:different|distinct|total|items?|objects?|things?|props?|pieces?|random|other|more|additional|extra|"
     r"distractors?|small|household|kitchen|everyday|assorted|various|ycb|simplerenv|simpler)\s+){0,3}?"
     r"(?:objects?|objs?|items?|things?|props?|pieces?|distractors?)\b)"
