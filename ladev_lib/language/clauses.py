@@ -312,6 +312,10 @@ class ClauseReader:
             if t.kind == "OBJ" and not self._is_modifier(content, k)
         ]
         refs: list[Ref] = []
+        if heads and self._noun_after(content[heads[-1] + 1 :]):
+            heads = heads[:-1] if len(heads) > 1 else []  # "the dish rack": a name used as a modifier
+            if not heads:
+                content = [Token("WORD", t.text) if t.kind == "OBJ" else t for t in content]
         if heads:
             start = 0
             for k in heads:
@@ -367,6 +371,17 @@ class ClauseReader:
                 Ref(text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem, candidates=candidates)
             ], []
         return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note, words=full)], []
+
+    def _noun_after(self, rest: list[Token]) -> bool:
+        """Words after a name that make it a modifier: a head noun of their own ("dish *rack*")."""
+        if not rest or any(t.kind != "WORD" for t in rest):
+            return False
+        last = rest[-1].text
+        return (
+            last.isalpha() and len(last) > 2 and last not in _NOT_NOUNS and last not in lx.LOCATION_NOUNS
+            and last not in lx.SKIPPABLE and last not in lx.DESIRE and last not in lx.COLOR_WORDS
+            and last not in lx.SIZE_WORDS
+        )
 
     def _is_modifier(self, content: list[Token], k: int) -> bool:
         """A name used as a modifier: "the coke label", "orange soda"."""
@@ -444,7 +459,7 @@ _FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
 """Head nouns that name a part of the object before them ("the cabinet top")."""
 _NOT_NOUNS = frozenset(
-    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing"]
+    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing", "itself", "again", "too", "also", "first", "instead", "already", "anyway", "though", "so", "oh", "ok", "okay", "well", "alright", "hey", "hi", "yes", "yeah", "hmm", "um", "uh"]
 )
 """Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
 

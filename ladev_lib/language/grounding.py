@@ -127,12 +127,15 @@ class Grounder:
         return Grounding(phrase, None, "free")
 
     def _in_scene(self, phrase: NounPhrase, scene: Sequence[SceneObject]) -> Grounding:
-        # 1. exact name or synonym
-        exact = [o.key for o in scene if phrase.text in o.names or (phrase.object_id and o.key == phrase.object_id)]
-        if len(set(exact)) == 1:
-            return Grounding(phrase, exact[0], "exact")
-        if len(exact) > 1:
-            return self._ambiguous(phrase, exact)
+        # 1. exact name or synonym as written, then the catalog object the phrase names
+        for exact in (
+            [o.key for o in scene if phrase.text in o.names],
+            [o.key for o in scene if phrase.object_id and o.key == phrase.object_id],
+        ):
+            if len(set(exact)) == 1:
+                return Grounding(phrase, exact[0], "exact")
+            if len(exact) > 1:
+                return self._ambiguous(phrase, exact)
         # 2. head noun and modifiers
         fits = [o.key for o in scene if self._head_fits(phrase, o, scene)]
         if len(fits) == 1:
@@ -170,7 +173,11 @@ class Grounder:
         by_group = False
         if obj.catalog_id is not None and head in lx.HYPERNYMS:
             by_group = obj.catalog_id in self.index._candidates(head)
-        elif obj.catalog_id is None and head in lx.PLAIN_HYPERNYMS:
+        elif obj.catalog_id is None and head in lx.HYPERNYMS:
+            # a plain name in the group when a catalog object with its head noun is ("screwdriver": a tool)
+            group = self.index._candidates(head)
+            by_group = any(group & self.index._candidates(h) for h in heads if h not in lx.GENERIC_HEADS)
+        if obj.catalog_id is None and not by_group and head in lx.PLAIN_HYPERNYMS:
             by_group = bool(heads & lx.PLAIN_HYPERNYMS[head])
         if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
             if phrase.object_id is None or phrase.object_id == obj.catalog_id:

@@ -221,6 +221,13 @@ POSITION_SYNONYMS: dict[str, str] = {
     "cubby": "compartment",
     "cubbyhole": "compartment",
     "pocket": "compartment",
+    # a surface named with its "top" is the furniture itself
+    "countertop": "counter",
+    "worktop": "counter",
+    "tabletop": "table",
+    "stovetop": "stove",
+    "benchtop": "bench",
+    "workbench": "bench",
 }
 
 

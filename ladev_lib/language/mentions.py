@@ -168,7 +168,7 @@ class NameIndex:
         self, candidates: set[str], modifiers: Sequence[str], scene: frozenset[str] | None, text: str
     ) -> ObjectRef:
         pools = []
-        if scene:
+        if scene and not self._plain_namesake(scene, text, candidates):
             pools.append((candidates & scene, "scene"))
         pools.append((candidates, "catalog"))
         for pool, where in pools:
@@ -180,6 +180,19 @@ class NameIndex:
                 more = f" and {len(fitting) - 4} more" if len(fitting) > 4 else ""
                 return ObjectRef(text, problem=f"'{text}' is ambiguous: {shown}{more}", candidates=tuple(fitting))
         return ObjectRef(text, problem=f"'{text}' names no known object")
+
+    def _plain_namesake(self, scene: frozenset[str], text: str, candidates: set[str]) -> bool:
+        """A scene object given by a plain name with the phrase's head noun, or the head noun of
+        one of its candidates ("blue cup" for "the cup", "screwdriver" for "the tool"): the
+        catalog ids of the scene do not tell which object is meant; grounding does."""
+        if not text.split():
+            return False
+        heads = {self._singular(text.split()[-1]) or text.split()[-1]}
+        heads |= {normalize_name(n).split()[-1] for c in candidates for n in self.catalog.get(c).names}
+        return any(
+            s not in self.catalog and (self._singular(s.split()[-1]) or s.split()[-1]) in heads
+            for s in scene if s.split()
+        )
 
     def prefer_scene(
         self, object_id: str, words: Sequence[str], scene: frozenset[str] | None, text: str

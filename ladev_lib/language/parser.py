@@ -259,6 +259,8 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
 
 
 _SAME_PLACE = frozenset({"top", "there", "top of it"})
+_OVER = frozenset({"over", "above"})
+"""Relations that bring an object above another before a later step sets it down in / on it."""
 """Places that stand for the destination just named ("set it on top", "drop it in there")."""
 
 
@@ -266,8 +268,9 @@ def _completes_destination(a: _Action, b: _Action) -> bool:
     """``b`` only says how ``a``'s object ends at ``a``'s destination: "carry the cup over to the
     tray and set it on top" puts it on the tray. ``a`` must carry the object *to* an object (a
     directional "near"); ``b`` names no object of its own to put it on. The relation is ``b``'s."""
-    towards = [g for g in a.governed() if g.refs and g.relation in PLACEMENT]
-    if len(towards) != 1 or not (towards[0].directional and towards[0].relation in ("near", *PLACEMENT)):
+    towards = [g for g in a.governed() if g.refs and (g.relation in PLACEMENT or g.phrase in _OVER)]
+    over = len(towards) == 1 and towards[0].phrase in _OVER  # "move it over the drawer, lower it inside"
+    if len(towards) != 1 or not (over or (towards[0].directional and towards[0].relation in ("near", *PLACEMENT))):
         return False
     completing = [g for g in b.governed() if g.relation in PLACEMENT]
     if not completing or any(g.refs or not set(g.places) <= _SAME_PLACE for g in completing):
@@ -275,7 +278,7 @@ def _completes_destination(a: _Action, b: _Action) -> bool:
     if any(r for r in b.bare() if not r.pronoun) or len({g.relation for g in completing}) != 1:
         return False
     relation = completing[0].relation
-    if towards[0].relation not in ("near", relation):
+    if towards[0].relation not in ("near", relation) and not over:
         return False
     towards[0].relation = relation
     for g in completing:

@@ -41,9 +41,11 @@ def fits_in(source: CatalogObject, container: CatalogObject, strict: bool = True
     """
     if not container.container:
         return f"{container.display_name!r} is not a container"
+    if not strict:
+        return _fits_in_by_hand(source, container)
     s_min, s_max = _horizontal(source)
     c_min, c_max = (v - 2 * CONTAINER_WALL_M for v in _horizontal(container))
-    reach = c_max + 0.02 if strict else max(c_max + 0.02, (c_min**2 + c_max**2) ** 0.5)
+    reach = c_max + 0.02
     if s_min + 0.005 > c_min or s_max > reach:
         return (
             f"{source.display_name!r} ({s_min * 100:.1f} x {s_max * 100:.1f} cm) does not fit in "
@@ -57,6 +59,27 @@ def fits_in(source: CatalogObject, container: CatalogObject, strict: bool = True
             f"{container.display_name!r} ({c_height * 100:.1f} cm deep)"
         )
     return None
+
+
+def _fits_in_by_hand(source: CatalogObject, container: CatalogObject) -> str | None:
+    """Whether a person could put ``source`` in ``container``: lying in it (also across the
+    diagonal), or standing / leaning in it with at most its upper part above the rim (a spoon
+    in a mug). Thinner walls than the strict rule and no clearance: the episode's solvability
+    check, not this rule, proves the scene."""
+    wall = CONTAINER_WALL_M / 2
+    s_min, s_max = _horizontal(source)
+    c_min, c_max = (v - 2 * wall for v in _horizontal(container))
+    diagonal = (c_min**2 + c_max**2) ** 0.5
+    c_height = container.size_m[2]
+    thin, mid, long_ = sorted(source.size_m)
+    lying = s_min <= c_min and s_max <= max(c_max + 0.02, diagonal) and source.size_m[2] <= 2 * c_height
+    leaning = thin <= c_min and mid <= c_max and long_ <= diagonal + c_height
+    if lying or leaning:
+        return None
+    return (
+        f"{source.display_name!r} ({s_min * 100:.1f} x {s_max * 100:.1f} cm) does not fit in "
+        f"{container.display_name!r} (opening about {c_min * 100:.1f} x {c_max * 100:.1f} cm)"
+    )
 
 
 def task_feasibility(

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import re
 
+from ladev_lib.language.scene.objects import canonical_name
 from ladev_lib.language.scene.words import Vocabulary
 
 _MARKER = re.compile(
@@ -52,6 +53,36 @@ _REPLACED_BY = re.compile(
 )
 
 
+_RELATION = (
+    r"(?:right next to|next to|close to|near|beside|on top of|onto|into|inside|in front of|behind|"
+    r"(?:to the )?(?:left|right) of|on|in)"
+)
+
+
+def correct_relations(text: str) -> str:
+    """ "move the golf ball next to the tennis ball - no, next to the cup": the corrected relation
+    replaces the one said before it (the rest of the statement stays). Case is kept; runs before
+    the task is looked for."""
+    out = text
+    for _ in range(4):
+        low = out.lower()
+        for m in _MARKER.finditer(low):
+            new = re.match(rf"\s*({_RELATION})\s+(?:the|a|an|that|this)\s", low[m.end():])
+            if new is None:
+                continue
+            starts = [c.end() for c in _CLAUSE_START.finditer(low, 0, m.start())]
+            start = starts[-1] if starts else 0
+            said = [r for r in re.finditer(rf"\b{_RELATION}\s+(?:the|a|an|that|this)\s", low[start : m.start()])]
+            if not said:
+                continue
+            cut = start + said[-1].start()
+            out = out[:cut] + out[m.end() :].lstrip()
+            break
+        else:
+            return out
+    return out
+
+
 def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], list[str]]:
     """The text with taken-back statements removed, the objects taken out by name, and those of
     them that another object replaces."""
@@ -69,6 +100,10 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         starts = [c.end() for c in _CLAUSE_START.finditer(out, 0, m.start())]
         start = starts[-1] if starts else 0
         taken = out[start:m.start()]
+        same = _same_object_again(out, start, m, vocab)
+        if same is not None:
+            out = same  # "one apple with a mug and a knife... actually make it two apples"
+            continue
         # keep an object list's head ("a lemon, a bowl - no, a mug": only the last item goes)
         items = [c.end() for c in re.finditer(r",|\band\b", taken)]
         if items and vocab.name_pattern.search(taken[: items[-1]]):
@@ -148,6 +183,25 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         take_out_by_word, out,
     )
     return out, dropped, replaced
+
+
+def _same_object_again(text: str, start: int, marker: re.Match[str], vocab: Vocabulary) -> str | None:
+    """The text with a counted object re-counted, when the correction names an object of the
+    clause again ("1 apple, a mug and a knife - actually, make it 2 apples": the mug and knife stay)."""
+    after = text[marker.end():]
+    phrase = re.match(r"\s*(?:(?:a|an|\d+)\s+)?([^.,;!?\n]+?)\s*(?=$|[.,;!?\n])", after)
+    if phrase is None:
+        return None
+    named = vocab.name_pattern.fullmatch(phrase.group(1).strip())
+    if named is None:
+        return None
+    name = canonical_name(vocab, named.group(0))
+    for m in vocab.name_pattern.finditer(text, start, marker.start()):
+        if canonical_name(vocab, m.group(0)) == name:
+            counted = re.search(r"(?:\b(?:a|an|\d+)\s+)$", text[start : m.start()])
+            begin = start + counted.start() if counted is not None else m.start()
+            return text[:begin] + phrase.group(0).strip() + text[m.end() : marker.start()] + after[phrase.end():]
+    return None
 
 
 def _has_content_after(text: str, pos: int) -> bool:

@@ -238,6 +238,18 @@ def expand_groups(text: str) -> str:
             return m.group(0)
         return f"{m.group(1)} {m.group(2)} {head} and {m.group(3)} {m.group(4)} {head}"
 
+    def listed(m: re.Match[str]) -> str:
+        head = head_before(m.start())
+        if head is None:
+            return m.group(0)
+        items = re.sub(rf"\b(a|an|one|1)\s+({ADJECTIVES})\b", rf"\1 \2 {head}", m.group(1))
+        return f"{items}{m.group(2)} {m.group(3)} {head}"
+
+    # "4 bricks (a green, a purple, a pink and a blue one)": every adjective shares the last "one"
+    text = re.sub(
+        rf"((?:\b(?:a|an|one|1)\s+(?:{ADJECTIVES})(?:\s*,\s*(?:and\s+)?|\s+and\s+))+)(a|an|one|1)\s+({ADJECTIVES})\s+(?:ones?|1)\b",
+        listed, text,
+    )
     # "2 cubes, a green and a yellow one": the first adjective shares the second's "one"
     text = re.sub(
         rf"\b(a|an|the|one|1)\s+({ADJECTIVES})\s+and\s+(a|an|the|one|1)\s+({ADJECTIVES})\s+(?:ones?|1)\b", pair, text
@@ -250,5 +262,32 @@ def expand_groups(text: str) -> str:
         np_ = m.group("np").strip()
         if np_ in _GENERIC or np_.split()[-1] in {w.split()[-1] for w in _GENERIC}:
             continue
+        plural = text[m.start("np"):].split()[len(np_.split()) - 1]  # "cubes" (np is "cub" + "es")
+        mods = tuple(w for w in np_.split()[:-1] if not re.fullmatch(rf"(?:{ADJECTIVES})", w))
+        if not _members_follow(singular(re.sub(r"[^a-z]", "", plural)), text[m.end():], mods):
+            continue  # "2 lemons, a bowl and a sponge": a list that starts with a count, not a group
         out = out[: m.start()] + " " + out[m.end():]
     return out
+
+
+_KIND_NOUNS = frozenset(
+    {"can", "cube", "block", "brick", "ball", "fruit", "toy", "tool", "cup", "bottle", "box", "drink", "soda",
+     "utensil", "vegetable", "veggie", "container", "kind", "type", "sort", "color", "colour"}
+)
+"""Group nouns whose items may be named without the noun ("2 soda cans, a sprite and a 7up")."""
+
+
+def _members_follow(head: str, after: str, modifiers: tuple[str, ...] = ()) -> bool:
+    """Whether what follows a count ("2 cubes, ...") spells out its members: the first item has
+    the group's noun ``head``, is "one" or only adjectives, or the noun is a kind that items name
+    alone. Not when the item is another kind of the same noun ("2 tennis balls, a golf ball")."""
+    first = re.split(r",|;|\)|\band\b|\.", after, maxsplit=1)[0]
+    words = [w for w in first.split() if w not in ("a", "an", "the", "one", "1")]
+    kinds = [w for w in words[:-1] if not re.fullmatch(rf"(?:{ADJECTIVES})", w)]
+    if modifiers and kinds and singular(words[-1]) == head and not set(modifiers) & set(kinds):
+        return False
+    if head in _KIND_NOUNS:
+        return True
+    if not words or words[-1] in ("ones", "1") or head in words or singular(words[-1]) == head:
+        return True
+    return all(re.fullmatch(rf"(?:{ADJECTIVES})", w) for w in words)

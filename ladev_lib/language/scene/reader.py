@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ladev_lib.language.frames import read_instruction
-from ladev_lib.language.scene.corrections import apply_corrections
+from ladev_lib.language.scene.corrections import apply_corrections, correct_relations
 from ladev_lib.language.scene.environment import (
     BRIGHTER,
     CAMERA_WORDS,
@@ -416,6 +416,14 @@ class _Reader:
                 at = text_wo_names.find(unknown)
                 qty = quantity(text_wo_names[:at]) if at >= 0 else 1
                 mention = singular(unknown) if qty > 1 else unknown
+                said = [o for o in self.out.objects if o.unknown and o.mention and o.mention.split()[-1] == mention.split()[-1]]
+                indefinite = re.search(r"\b(?:a|an|another|\d+)\s+(?:\w+\s+)?$", text_wo_names[:at]) if at >= 0 else None
+                if said and indefinite is None:
+                    # "a TV remote ..., remote at the front": the object named before, by its head noun
+                    if position is not None and said[-1].position is None:
+                        said[-1].position = position
+                    self.out.recognised += 1
+                    return said[-1]
                 found.extend(_ObjectOp(mention, unknown=True) for _ in range(qty))
 
         if found and self._sentence_randoms > 0 and _MEMBER.search(text):
@@ -469,7 +477,7 @@ def read_description(
     description states (its statements are not read as objects); ``task``
     (a type alone). Task statements are taken out of the text either way.
     """
-    found = find_task(description or "", vocab.ids)
+    found = find_task(correct_relations(description or ""), vocab.ids)
     text, dropped, replaced = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
     protected, slots = protect_coordinates(text)
     task_objects = tuple(
@@ -517,6 +525,8 @@ def read_description(
     elif task:
         out["task"] = {"type": task}
     recognised_task = 1 if stated is not None else 0  # a description that states only its task is read
+    if isinstance(out.get("task"), dict):
+        _task_names_described(out["task"], reading, vocab)
 
     if description.strip() and reading.recognised + recognised_task == 0:
         out["error"] = "no object, object count, position, lighting or camera setting found in the description"
@@ -542,6 +552,19 @@ def read_description(
     ops.extend(merge_camera(reading.camera))
     out["operations"] = ops
     return out
+
+
+def _task_names_described(task: dict[str, Any], reading: _Reading, vocab: Vocabulary) -> None:
+    """A task object the catalog does not know, named by the head noun of an object the description
+    names in full ("a TV remote ... place the remote on the towel"), is that object."""
+    unknown = [o.mention for o in reading.objects if o.unknown and o.mention]
+    for key in ("source", "target"):
+        name = task.get(key)
+        if not isinstance(name, str) or name in vocab.name_ids or name in vocab.ids.values():
+            continue
+        fuller = {m for m in unknown if m != name and m.split()[-1] == name.split()[-1] and m.endswith(name)}
+        if len(fuller) == 1:
+            task[key] = fuller.pop()
 
 
 def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | None:

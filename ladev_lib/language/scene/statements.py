@@ -46,7 +46,7 @@ LABEL = re.compile(
     r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt)"
     r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
     r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+(?:will|should|would|shall|must)\s+be\s+(?:to\s+)?|"
-    r"\s+(?=" + _VERB + r"\b))",
+    r"\s+(?=" + _VERB + r"\b)|\s+(?=(?:pick_up|move_near|put_on|put_in)\s*\())",
     re.IGNORECASE,
 )
 AGENT_MODAL = re.compile(
@@ -71,6 +71,17 @@ BACK_LABEL = re.compile(
     r"^\s*(?:that|this|which)(?:'s|\s+is|\s+will\s+be)\s+(?:the\s+)?(?:robot'?s?\s+|arm'?s?\s+|its\s+)?"
     r"(?:whole\s+|only\s+|main\s+|actual\s+|entire\s+)?(?:task|job|goal|objective|mission)",
     re.IGNORECASE,
+)
+NEED_THE = re.compile(
+    r"\b(?:i|we)(?:'d|\s+would)?\s+(?:really\s+|just\s+|also\s+)?(?:need|want|like|wish\s+for|expect)\s+"
+    r"(?=the\s+(?!robot|arm|agent|gripper|policy|scene|camera|light)\w)",
+    re.IGNORECASE,
+)
+"""A wish about a named object ("I need the strawberry on the plate"): read as a statement only
+when it reads as one of the four tasks ("I need the plate and a knife" lists objects)."""
+_SETTING_WORDS = frozenset(
+    {"brightness", "light", "lights", "lighting", "illumination", "exposure", "camera", "cam", "view", "viewpoint",
+     "angle", "intensity", "dimmer"}
 )
 IMPERATIVE = re.compile(
     rf"^\s*(?:(?:please|now|then|and|just|finally|simply|so|also|next|oh|ok|okay|well|alright|lastly)\s*,?\s+)*(?={_VERB}\b)",
@@ -182,6 +193,23 @@ _ARROW = re.compile(
 )
 
 
+_CALL = re.compile(
+    r"^\s*(?P<task>pick_up|move_near|put_on|put_in)\s*\(\s*(?P<src>[^,()]+?)\s*(?:,\s*(?P<tgt>[^()]+?)\s*)?\)", re.IGNORECASE
+)
+
+
+def _call(text: str) -> str:
+    """'put_on(banana, red plate)' -> 'put banana on red plate'."""
+    m = _CALL.match(text)
+    if m is None:
+        return text
+    task, src, tgt = m.group("task").lower(), m.group("src"), m.group("tgt")
+    if task == "pick_up" or tgt is None:
+        return f"pick up {src}"
+    words = {"move_near": "move {} near {}", "put_on": "put {} on {}", "put_in": "put {} in {}"}
+    return words[task].format(src, tgt) + text[m.end():]
+
+
 def _arrow(text: str) -> str:
     """'marker -> mug (put in)' -> 'put marker in mug'."""
     m = _ARROW.match(text)
@@ -206,7 +234,7 @@ def _normalise(candidate: str) -> str:
         r"the \1", candidate, flags=re.IGNORECASE,
     )
     candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
-    candidate = _arrow(candidate)
+    candidate = _arrow(_call(candidate))
     candidate = re.sub(
         r"^\s*(pick|grabb|grasp|lift|tak|putt|plac|sett|mov|bring|stack|dropp|insert|push|slid|carry|lay|rest|gett)ing\b",
         lambda m: _ING.get(m.group(1).lower(), m.group(1)), candidate, flags=re.IGNORECASE,
@@ -226,6 +254,8 @@ def _read_one(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
     frame = reader(text)
     if any(p is not None and p.candidates for p in (frame.object, frame.destination)):
         return None  # "the cup" with several cups in the catalog: only the scene can say which
+    if frame.object is not None and frame.object.head in _SETTING_WORDS:
+        return None  # "drop the brightness to 90 %": a setting, not an object
     if frame.task in TASKS and frame.object is not None and frame.ok:
         if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
             return None
@@ -271,6 +301,9 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
             m = pattern.search(seg)
             if m is not None and (marked is None or m.end() < marked):
                 marked = m.end()
+        need = NEED_THE.search(seg)
+        if marked is None and need is not None and _read_span(seg[need.start():], reader) is not None:
+            marked = need.start()  # "I need the knife near the fork": an end state is the task
         if marked is not None:
             span = _read_span(seg[marked:], reader)
             frame = span[0] if span is not None else None

@@ -195,6 +195,14 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("’", "'").replace("‘", "'").replace("“", '"').replace("”", '"')
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
+    t = re.sub(r"\ba (?:pair|couple) of\b", "two", t)  # "a pair of lemons"
+    t = re.sub(r"\ba trio of\b", "three", t)
+    # "something else of your choice", "one more thing, anything": a free choice
+    t = re.sub(
+        r"\b(?:something|anything|one (?:more )?thing|another (?:thing|object|item))(?: else)?"
+        r"(?= (?:of your choice|you like|you want|at random|random)\b)",
+        "1 random object", t,
+    )
     for cid, display in vocab.ids.items():
         if len(cid) >= 4 and cid in t:
             t = re.sub(rf"(?<![a-z0-9]){re.escape(cid)}(?![a-z0-9])", display, t)
