@@ -10,6 +10,9 @@ Grounding is its own step after reading, tried in order:
 2. **head**: the phrase's head noun (or a group noun: "fruit", "container")
    fits exactly one scene object and its modifiers fit that object (colour,
    name words; size words fit anything);
+2b. **kind**: when no head fits, what kind of thing each object is, from
+   WordNet's noun hierarchy (:mod:`ladev_lib.language.wordnet`): "the tool"
+   is the scene's one trowel, "the trash can" its one bin;
 3. **embedding**: the phrase's sentence embedding is nearest one scene
    object's name, above ``min_similarity`` and by ``margin`` over the
    runner-up.
@@ -24,7 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Literal, Protocol
 
 from ladev_lib.arrays import Array
 from ladev_lib.catalog import Catalog, load_catalog
@@ -33,6 +36,7 @@ from ladev_lib.language import lexicon as lx
 from ladev_lib.language.embeddings import rounded
 from ladev_lib.language.frames import NounPhrase, Qualifier
 from ladev_lib.language.mentions import NameIndex, name_index
+from ladev_lib.language.wordnet import Nouns, default_nouns
 
 DEFAULT_MARGIN = 0.05
 """Cosine margin the best scene object needs over the runner-up to be chosen by embedding."""
@@ -84,8 +88,11 @@ class Grounder:
         embedder: PhraseEmbedder | None = None,
         margin: float = DEFAULT_MARGIN,
         min_similarity: float = DEFAULT_MIN_SIMILARITY,
+        nouns: Nouns | None | Literal["default"] = "default",
     ) -> None:
         self.catalog = catalog or load_catalog()
+        self.nouns = default_nouns() if nouns == "default" else nouns
+        """WordNet's nouns, for what kind of thing a plain name is ("trowel": a tool); None: not used."""
         self.index: NameIndex = name_index(self.catalog)
         self.embedder = embedder
         self.margin = margin
@@ -142,6 +149,12 @@ class Grounder:
             return Grounding(phrase, fits[0], "head")
         if len(fits) > 1:
             return self._ambiguous(phrase, fits)
+        # 2b. what kind of thing each object is (WordNet), when no head noun fits
+        kinds = [o.key for o in scene if self._head_fits(phrase, o, scene, kinds=True)]
+        if len(kinds) == 1:
+            return Grounding(phrase, kinds[0], "kind")
+        if len(kinds) > 1:
+            return self._ambiguous(phrase, kinds)
         # 3. embedding similarity with a margin, over the objects the phrase may name: a
         # phrase the catalog reads as one object ("banana") never names a different
         # catalog object ("apple"), however close their embeddings are
@@ -166,7 +179,9 @@ class Grounder:
             phrase, None, "ambiguous", keys, f"'{phrase.text}' is ambiguous: {', '.join(keys)}"
         )
 
-    def _head_fits(self, phrase: NounPhrase, obj: SceneObject, scene: Sequence[SceneObject]) -> bool:
+    def _head_fits(
+        self, phrase: NounPhrase, obj: SceneObject, scene: Sequence[SceneObject], kinds: bool = False
+    ) -> bool:
         head = _singular(phrase.head)
         heads = {_singular(n.split()[-1]) for n in obj.names}
         words = {w for n in obj.names for w in n.split()}
@@ -179,6 +194,13 @@ class Grounder:
             by_group = any(group & self.index._candidates(h) for h in heads if h not in lx.GENERIC_HEADS)
         if obj.catalog_id is None and not by_group and head in lx.PLAIN_HYPERNYMS:
             by_group = bool(heads & lx.PLAIN_HYPERNYMS[head])
+        if kinds and not by_group and head not in heads and self.nouns is not None:
+            # what kind of thing a name is: "the trash can" is a bin; for a plain name also the other
+            # way ("the tool" for a trowel), which the catalog's own groups give for its objects
+            by_group = any(
+                self.nouns.is_a(phrase.text, n) or (obj.catalog_id is None and self.nouns.is_a(n, phrase.text))
+                for n in obj.names
+            )
         if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
             if phrase.object_id is None or phrase.object_id == obj.catalog_id:
                 return False
@@ -299,6 +321,8 @@ class Grounder:
         colours_b = {_COLOUR_ALIASES.get(w, w) for w in b.modifiers if w in _COLOURS}
         if colours_a and colours_b and colours_a != colours_b:
             return False
+        if self.nouns is not None and self.nouns.synonyms(a.text, b.text):
+            return True  # one WordNet synset: "wastebin" and "trash can"
         if self.embedder is None:
             return a.text == b.text
         texts_a = [a.text] if id_a is None else [normalize_name(n) for n in self.catalog.get(id_a).names]

@@ -252,6 +252,10 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)  # "bring it over to the rack and set it on top"
     if a.kind == "place" and b.kind == "release":
         return _Action("place", both)
+    if a.kind == "place" and b.kind == "place" and all((c.intro or "") == "result" for c in b.clauses):
+        ends = [{r.object_id for g in act.governed() if g.relation in PLACEMENT for r in g.refs} for act in (a, b)]
+        if ends[0] and ends[0] == ends[1]:
+            return _Action("place", both)  # "... release it so that it rests inside the pot": the end state again
     leaves = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma == "leave"
     if a.kind == "place" and leaves:
         return _Action("place", both)  # "... and leave it there"

@@ -153,7 +153,23 @@ def _unfold_where(words: list[str]) -> list[str]:
     return out
 
 
+_WISH = (("would", "like"), ("want",), ("need",), ("wish",), ("would", "love"))
+_STRANDED = frozenset({"on", "onto", "in", "into", "inside", "near", "beside", "by", "to"})
+
+
 def _unfold_sentence(s: list[str]) -> list[str]:
+    # "what i would like is for the glass to end up on the plate" -> "i would like the glass to ..."
+    if len(s) > 5 and s[0] == "what" and s[1] in ("i", "we"):
+        for wish in _WISH:
+            n = len(wish)
+            if tuple(s[2 : 2 + n]) == wish and s[2 + n : 4 + n] == ["is", "for"]:
+                return [s[1], *wish, *s[4 + n :]]
+    # "it is the drawer that the bowl should go into" -> "the bowl should go into the drawer"
+    trailing = len(s) - (1 if s and s[-1] in _PUNCT else 0)
+    if len(s) > 5 and s[0] in ("it", "that") and s[1] in _BE_WORDS and 0 < trailing and s[trailing - 1] in _STRANDED:
+        rel = next((k for k in range(3, trailing - 1) if s[k] in ("that", "which")), None)
+        if rel is not None and rel < trailing - 2:
+            return [*s[rel + 1 : trailing], *s[2:rel], *s[trailing:]]
     if "where" not in s:
         return s
     w = s.index("where")

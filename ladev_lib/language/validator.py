@@ -161,10 +161,11 @@ def frame_mismatch(
     """Why ``got`` does not ask for what ``expected`` asks for (None if it does), and the groundings."""
     g_exp: list[Grounding | None] = [None, None]
     g_got: list[Grounding | None] = [None, None]
-    for k, phrase in enumerate((expected.object, expected.destination)):
-        g_exp[k] = grounder.ground(phrase, scene) if phrase is not None else None
-    for k, phrase in enumerate((got.object, got.destination)):
-        g_got[k] = grounder.ground(phrase, scene) if phrase is not None else None
+    for groundings, frame in ((g_exp, expected), (g_got, got)):
+        if frame.object is not None:
+            groundings[0] = grounder.ground(frame.object, scene)
+        if frame.destination is not None:
+            groundings[1] = grounder.ground(frame.destination, _without(scene, groundings[0]))
     if not expected.ok:
         return f"original not understood: {expected.reason}", g_exp, g_got
     if not got.ok:
@@ -176,12 +177,14 @@ def frame_mismatch(
         return f"task changed: {expected.task} -> {got.task}", g_exp, g_got
     if expected.object is None or got.object is None:
         return "no object to act on", g_exp, g_got
-    same_obj, why_obj, _, _ = grounder.compare(expected.object, got.object, scene)
+    same_obj, why_obj, g_obj, _ = grounder.compare(expected.object, got.object, scene)
     same_dest, why_dest = True, None
     if needs_destination(expected.task or ""):
         if expected.destination is None or got.destination is None:
             return "no destination", g_exp, g_got
-        same_dest, why_dest, _, _ = grounder.compare(expected.destination, got.destination, scene)
+        # where the object goes is another object than the one moved ("put the ladle in the container")
+        rest = _without(scene, g_obj) if same_obj else scene
+        same_dest, why_dest, _, _ = grounder.compare(expected.destination, got.destination, rest)
         if not same_obj and not same_dest:
             swapped = (
                 grounder.compare(expected.object, got.destination, scene)[0]
@@ -194,6 +197,13 @@ def frame_mismatch(
     if not same_dest:
         return f"destination changed: {why_dest}", g_exp, g_got
     return None, g_exp, g_got
+
+
+def _without(scene: Sequence[SceneObject] | None, grounding: Grounding | None) -> Sequence[SceneObject] | None:
+    """The scene less the object a phrase grounded on (a destination is never the object moved)."""
+    if not scene or grounding is None or grounding.object_id is None:
+        return scene
+    return tuple(o for o in scene if o.key != grounding.object_id) or scene
 
 
 def cpu_has_native_bf16() -> bool:
