@@ -192,7 +192,7 @@ class Grounder:
             # a plain name in the group when a catalog object with its head noun is ("screwdriver": a tool)
             group = self.index._candidates(head)
             by_group = any(group & self.index._candidates(h) for h in heads if h not in lx.GENERIC_HEADS)
-        if obj.catalog_id is None and not by_group and head in lx.PLAIN_HYPERNYMS:
+        if kinds and obj.catalog_id is None and not by_group and head in lx.PLAIN_HYPERNYMS:
             by_group = bool(heads & lx.PLAIN_HYPERNYMS[head])
         if kinds and not by_group and head not in heads and self.nouns is not None:
             # what kind of thing a name is: "the trash can" is a bin; for a plain name also the other

@@ -83,7 +83,7 @@ class Nouns:
             yield from frontier
 
     def is_a(self, noun: str, kind: str) -> bool:
-        """Whether ``noun`` (or, for a compound WordNet lacks, its head noun) names a kind of ``kind``."""
+        """Whether ``noun`` (as a compound, or by its head noun) names a kind of ``kind``."""
         kinds = set(self.senses(kind))
         if not kinds:
             return False
@@ -97,7 +97,9 @@ class Nouns:
         return bool(set(self.senses(a)) & set(self.senses(b)))
 
     def _senses_or_head(self, noun: str) -> tuple[int, ...]:
-        return self.senses(noun) or (self.senses(noun.split()[-1]) if noun.split() else ())
+        """A compound's senses and its head noun's ("mixing bowl": also a bowl, a vessel)."""
+        head = self.senses(noun.split()[-1]) if len(noun.split()) > 1 else ()
+        return tuple(dict.fromkeys((*self.senses(noun), *head)))
 
 
 def _data_directory() -> Path | None:
