@@ -206,7 +206,7 @@ ADJECTIVES = (
 _GENERIC = {"object", "item", "thing", "prop", "piece", "distractor", "random object", "other object"}
 
 
-def expand_groups(text: str) -> str:
+def expand_groups(text: str, vocab: Vocabulary | None = None) -> str:
     """Plural groups spelled out item by item, as a person means them.
 
     "2 cubes, a green one and a yellow one" -> "a green cube and a yellow cube";
@@ -265,7 +265,9 @@ def expand_groups(text: str) -> str:
         plural = text[m.start("np"):].split()[len(np_.split()) - 1]  # "cubes" (np is "cub" + "es")
         mods = tuple(w for w in np_.split()[:-1] if not re.fullmatch(rf"(?:{ADJECTIVES})", w))
         if not _members_follow(singular(re.sub(r"[^a-z]", "", plural)), text[m.end():], mods):
-            continue  # "2 lemons, a bowl and a sponge": a list that starts with a count, not a group
+            continue
+        if vocab is not None and not _one_object_named(vocab, np_, plural, text[m.end():]):
+            continue  # "2 golf balls, a large blue cup": the golf balls are one catalog object, the cup is not one  # "2 lemons, a bowl and a sponge": a list that starts with a count, not a group
         out = out[: m.start()] + " " + out[m.end():]
     return out
 
@@ -275,6 +277,19 @@ _KIND_NOUNS = frozenset(
      "utensil", "vegetable", "veggie", "container", "kind", "type", "sort", "color", "colour"}
 )
 """Group nouns whose items may be named without the noun ("2 soda cans, a sprite and a 7up")."""
+
+
+def _one_object_named(vocab: Vocabulary, np_: str, plural: str, after: str) -> bool:
+    """When a group names one catalog object ("2 golf balls"), whether its first item is that object."""
+    words = np_.split()
+    group = " ".join([*words[:-1], singular(re.sub(r"[^a-z]", "", plural))])
+    if group not in vocab.canonical:
+        return True  # a kind ("2 soda cans", "4 fruits"): its items may be any objects of it
+    first = re.split(r",|;|\)|\band\b|\.", after, maxsplit=1)[0]
+    named = vocab.name_pattern.search(first)
+    if named is None:
+        return True  # "a green one", "the left one"
+    return canonical_name(vocab, named.group(0)) == vocab.canonical[group]
 
 
 def _members_follow(head: str, after: str, modifiers: tuple[str, ...] = ()) -> bool:

@@ -478,7 +478,7 @@ def read_description(
     (a type alone). Task statements are taken out of the text either way.
     """
     found = find_task(correct_relations(description or ""), vocab.ids)
-    text, dropped, replaced = apply_corrections(expand_groups(normalize_text(found.rest, vocab)), vocab)
+    text, dropped, replaced = apply_corrections(expand_groups(normalize_text(found.rest, vocab), vocab), vocab)
     protected, slots = protect_coordinates(text)
     task_objects = tuple(
         str(found.task[k]) for k in ("source", "target") if found.task is not None and found.task.get(k)

@@ -348,6 +348,19 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
             else:
                 found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
             continue
+        goes = _GOES.match(seg)
+        if (
+            goes is not None and IMPERATIVE.match(seg) is None
+            and re.match(r"\s*(?:the|that|this)\s", goes.group("x"), re.IGNORECASE)
+            and not re.match(r"(?:near|next|beside)", goes.group("rel"), re.IGNORECASE)
+            and not re.search(r",|;|\band\b", goes.group("y"))
+        ):
+            # "The carrot goes on the red plate.": an end state for an object named before is the task
+            said = _as_command(seg)
+            frame = _read(said, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, said, frame, 1))
+                continue
         verbless = _VERBLESS.match(seg)
         if verbless is not None and IMPERATIVE.match(seg) is None:
             # "Plum into the cup.": a task said without its verb

@@ -17,7 +17,7 @@ _NUMBER_WORDS = {
 }
 _NUMBER_PHRASES = [
     (r"\bhalf a dozen\b", "6"), (r"\ba dozen\b", "12"), (r"\ba couple of\b", "2"),
-    (r"\ba pair of\b", "2"), (r"\ba single\b", "1"), (r"\bsingle\b", "1"), (r"\bjust 1\b", "1"),
+    (r"\ba single\b", "1"), (r"\bsingle\b", "1"), (r"\bjust 1\b", "1"),
     (r"\bboth\b", "2"),
 ]
 NUM = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"
@@ -80,7 +80,7 @@ _COORD3 = re.compile(rf"[\(\[]\s*({NUM})\s*,\s*({NUM})\s*,\s*({NUM})\s*[\)\]]")
 COUNT_TOTAL = re.compile(
     r"(?:\b(?:number of objects|num_objects|n_objects|objects|object count|count|items|total)\s*(?:is\s*)?[:=]\s*(\d+)\b)"
     r"|(?:\b(?:a total of|total of|in total|altogether)\s*(\d+)\b)"
-    r"|(?:\b(\d+)\s+(?:(?:objects?|items?|things?)\s+)?(?:in all|in total|total|altogether)\b)"
+    r"|(?:\b(\d+)\s+(?:(?:objects?|items?|things?)\s+)?(?:in all|in total|total|altogether|overall)\b)"
     r"|(?:\b(\d+)\s+(?:(?:different|distinct|total|items?|objects?|things?|props?|pieces?|random|other|more|additional|extra|"
     r"distractors?|small|household|kitchen|everyday|assorted|various|ycb|simplerenv|simpler)\s+){0,3}?"
     r"(?:objects?|objs?|items?|things?|props?|pieces?|distractors?)\b)"
@@ -195,7 +195,8 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("’", "'").replace("‘", "'").replace("“", '"').replace("”", '"')
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
-    t = re.sub(r"\ba (?:pair|couple) of\b", "two", t)  # "a pair of lemons"
+    # "a pair of lemons" (not "a pair of scissors": one object)
+    t = re.sub(r"\ba (?:pair|couple) of\b(?! (?:scissors|pliers|tongs|tweezers|glasses|shears|goggles|pincers|snips|cutters)\b)", "two", t)
     t = re.sub(r"\ba trio of\b", "three", t)
     # "something else of your choice", "one more thing, anything": a free choice
     t = re.sub(
