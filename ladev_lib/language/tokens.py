@@ -166,7 +166,7 @@ def _unfold_sentence(s: list[str]) -> list[str]:
                 return [s[1], *wish, *s[4 + n :]]
     # "it is the drawer that the bowl should go into" -> "the bowl should go into the drawer"
     trailing = len(s) - (1 if s and s[-1] in _PUNCT else 0)
-    if len(s) > 5 and s[0] in ("it", "that") and s[1] in _BE_WORDS and 0 < trailing and s[trailing - 1] in _STRANDED:
+    if len(s) > 5 and s[0] in ("it", "that") and s[1] in _BE_WORDS and trailing > 0 and s[trailing - 1] in _STRANDED:
         rel = next((k for k in range(3, trailing - 1) if s[k] in ("that", "which")), None)
         if rel is not None and rel < trailing - 2:
             return [*s[rel + 1 : trailing], *s[2:rel], *s[trailing:]]

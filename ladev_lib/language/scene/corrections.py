@@ -27,13 +27,19 @@ import re
 from ladev_lib.language.scene.objects import canonical_name
 from ladev_lib.language.scene.words import Vocabulary
 
+_MARKER_WORDS = (
+    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|"
+    r"hmm+|scratch that|i mean|or rather|on second thought|not quite|my bad|err?|um+)\b[\s,.:;!-]*)"
+)
+_RESTATE = (
+    r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|"
+    r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be)\b[\s,:]*)"
+)
 _MARKER = re.compile(
     r"\s*(?:-+|—|–|,|;|\(|\.\.\.)\s*"
-    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|"
-    r"hmm+|scratch that|i mean|or rather|on second thought|not quite|my bad|err?|um+)\b[\s,.:;!-]*)+"
-    r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|"
-    r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be)\b[\s,:]*)*"
+    rf"(?:{_MARKER_WORDS}+{_RESTATE}*|(?<=\.\.\.)\s*(?:make (?:that|it)|change (?:that|it) to)\b[\s,:]*)"
 )
+"""A self-correction: "- no, make that", ", sorry,", "... actually", "... make that"."""
 _DIRECTIONS = (
     "counterclockwise", "anticlockwise", "clockwise", "left", "right", "up", "down", "forward", "backward", "back",
     "closer", "farther", "higher", "lower", "brighter", "darker", "dimmer",
@@ -63,7 +69,12 @@ def correct_relations(text: str) -> str:
     """ "move the golf ball next to the tennis ball - no, next to the cup": the corrected relation
     replaces the one said before it (the rest of the statement stays). Case is kept; runs before
     the task is looked for."""
-    out = text
+    # "... on the towel. Hmm, no, on the sponge.": a correction that starts a sentence
+    out = re.sub(
+        rf"([.!?])\s+((?:hmm+|no+|nope|wait|sorry|actually|oops)\b[,!.]?\s*(?:(?:no+|wait|sorry|actually)\b[,!.]?\s*)*"
+        rf"{_RELATION}\s+(?:the|a|an)\s)",
+        r" - \2", text, flags=re.IGNORECASE,
+    )
     for _ in range(4):
         low = out.lower()
         for m in _MARKER.finditer(low):
@@ -111,6 +122,14 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
             taken = out[start:m.start()]
         keep = " ".join(sorted({k.group(0) for k in _KEEP.finditer(taken)}))
         after = out[m.end():]
+        amount = re.match(r"\s*(-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?)\s*(?=$|[.;,!\n])", after)
+        said_amounts = list(re.finditer(r"-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?", taken))
+        if amount is not None and said_amounts:
+            # "lights 20% darker, actually make it 25%": only the amount changes
+            old = said_amounts[-1]
+            fixed = taken[: old.start()] + amount.group(1).strip() + " " + taken[old.end():]
+            out = out[:start] + fixed + after[amount.end():]
+            continue
         short = re.match(r"\s*([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)
         if short is not None and short.group(1).split()[0] in _DIRECTIONS:
             # "roll 3 degrees clockwise - no, counterclockwise": only the direction changes
@@ -127,6 +146,9 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         out = out[:start] + f" {keep} " + after
     # 2. "not a bowl, a mug" / "no bowl" / "without a sponge": the negated object is not there.
     names = vocab.name_pattern.pattern
+    swapped: list[str] = []
+
+    out = _swap_objects(out, names, swapped)
     negation = r"\b(?:not|no|without|never|dont (?:add|include|put|want|need)|do not (?:add|include|put))\s+"
     dropped: list[str] = []
 
@@ -182,22 +204,44 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         rf"\b{_REMOVE_VERB}\s+(?:the|that|this|my)\s+(?P<word>[a-z0-9]+)(?=\s*(?:$|[,;.!]|\band\b))",
         take_out_by_word, out,
     )
+    for name in swapped:
+        dropped.append(name)
+        replaced.append(name)
     return out, dropped, replaced
 
 
+def _swap_objects(text: str, names: str, swapped: list[str]) -> str:
+    """ "instead of the bowl use the basket", "swap the pepsi can for a sprite can": the new object
+    is said (as a new one) and the old one is taken back (listed in ``swapped``)."""
+    forms = (
+        rf"\binstead of (?:the|a|an) (?P<old>{names}),? (?:use|take|put|go with|make it) (?:the|a|an) (?P<new>{names})",
+        rf"\b(?:swap|replace|switch|exchange|trade) (?:the|a|an|that|this) (?P<old>{names}) (?:for|with) (?:the|a|an) (?P<new>{names})",
+    )
+    for form in forms:
+        def use(m: re.Match[str], text: str = text) -> str:
+            if re.search(rf"(?<![a-z]){re.escape(m.group('old'))}(?![a-z])", text[: m.start()]) is None:
+                return m.group(0)
+            swapped.append(m.group("old"))
+            return f" a {m.group('new')} "
+
+        text = re.sub(form, use, text)
+    return text
+
+
 def _same_object_again(text: str, start: int, marker: re.Match[str], vocab: Vocabulary) -> str | None:
-    """The text with a counted object re-counted, when the correction names an object of the
-    clause again ("1 apple, a mug and a knife - actually, make it 2 apples": the mug and knife stay)."""
+    """The text with one object of the clause said again, when the correction names an object with
+    its head noun ("1 apple, a mug and a knife - actually, make it 2 apples": the mug and knife
+    stay; "a banana on a plate... make that the red plate": the banana stays)."""
     after = text[marker.end():]
-    phrase = re.match(r"\s*(?:(?:a|an|\d+)\s+)?([^.,;!?\n]+?)\s*(?=$|[.,;!?\n])", after)
+    phrase = re.match(r"\s*(?:(?:a|an|the|\d+)\s+)?([^.,;!?\n]+?)\s*(?=$|[.,;!?\n])", after)
     if phrase is None:
         return None
     named = vocab.name_pattern.fullmatch(phrase.group(1).strip())
     if named is None:
         return None
-    name = canonical_name(vocab, named.group(0))
+    head = canonical_name(vocab, named.group(0)).split()[-1]
     for m in vocab.name_pattern.finditer(text, start, marker.start()):
-        if canonical_name(vocab, m.group(0)) == name:
+        if canonical_name(vocab, m.group(0)).split()[-1] == head:  # "a plate ... make that the red plate"
             counted = re.search(r"(?:\b(?:a|an|\d+)\s+)$", text[start : m.start()])
             begin = start + counted.start() if counted is not None else m.start()
             return text[:begin] + phrase.group(0).strip() + text[m.end() : marker.start()] + after[phrase.end():]

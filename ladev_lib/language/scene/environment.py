@@ -22,8 +22,10 @@ LIGHT_WORDS = re.compile(
     r"set lighting|set_lighting)\b"
 )
 CAMERA_WORDS = re.compile(
-    r"\b(?:camera|cam|view|viewpoint|viewing angle|perspective|pov|lens|move_camera)\b"
+    r"\b(?:camera|cam|view|viewpoint|viewing angle|perspective|pov|lens|move_camera|"
+    r"dolly|dollied|dollies|truck|trucked|crane|craned|zoom|zoomed)\b"
 )
+"""Words that name the camera, and motions only a camera makes ("dolly in 2 cm")."""
 MOTION = re.compile(
     rf"(?:{NUM}\s*(?:cm|mm|m|centimet(?:er|re)s?|millimet(?:er|re)s?|met(?:er|re)s?|inch(?:es)?|deg|degrees?)\b)|"
     r"\b(?:tilt(?:ed|s)?|pan(?:ned|s)?|rotat(?:e|ed|es|ion)|roll(?:ed|s)?|yaw(?:ed)?|pitch(?:ed)?|"
@@ -62,6 +64,8 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
         value = float(factor.group(1) or factor.group(2))
         return {"op": "set_lighting", "intensity_delta": round(value - 1.0, 4)}
     text = re.sub(rf"({NUM})\s*(?:percent|per cent|pct)\b", r"\1%", text)
+    # "3/10 dimmer": a fraction is a share
+    text = re.sub(r"(?<![\d.])(\d+)\s*/\s*(\d+)(?![\d.])", lambda m: f" {100 * int(m.group(1)) / max(int(m.group(2)), 1):g}% ", text)
     text = re.sub(r"\b(\d) quarters\b", lambda m: f" {int(m.group(1)) * 25}% ", text)
     text = re.sub(r"\b(\d) tenths?\b", lambda m: f" {int(m.group(1)) * 10}% ", text)
     text = re.sub(r"\b(?:a )?tenth\b", " 10% ", text)

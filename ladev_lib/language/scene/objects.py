@@ -62,7 +62,9 @@ def find_relation(vocab: Vocabulary, text: str) -> tuple[dict[str, Any], str] | 
     return None
 
 def _reference(vocab: Vocabulary, rest: str, strict: bool) -> tuple[str, int] | None:
-    m = re.match(r"\s*(?:the|a|an)?\s*", rest)
+    if re.match(r"\s*(?:them|those|these|they|it|that|this|me|us|you)\b", rest):
+        return None  # a pronoun: no object of its own ("a lamp behind them")
+    m = re.match(r"\s*(?:(?:the|a|an)\b)?\s*", rest)
     start = m.end() if m else 0
     name = vocab.name_pattern.match(rest, start)
     if name is not None:
@@ -132,12 +134,18 @@ def unknown_phrase(text: str) -> str | None:
     run: list[str] = []
     introduced = False
     content = [w for w in words if not w.startswith("@") and w not in FILLERS and not re.fullmatch(r"\d+(?:\.\d+)?", w)]
+    if content and all(re.search(r"(?:ly|ed)$", w) for w in content):
+        return None  # "loosely grouped", "neatly arranged": how, not what
     end = len(words)
     for i, w in enumerate(words):
         if w.startswith("@"):
             run = []
             continue
         if w in SCENE_NOUNS:
+            nxt = words[i + 1] if i + 1 < len(words) else ""
+            if not run and introduced and nxt.isalpha() and nxt not in FILLERS and nxt not in STOP_PREPOSITIONS:
+                run.append(w)  # "a desk lamp": a scene noun as a modifier
+                continue
             if run:
                 end = i
                 break
@@ -214,6 +222,7 @@ def expand_groups(text: str, vocab: Vocabulary | None = None) -> str:
     the group); "the green one" after "2 blocks" -> "the green block". Counts
     of generic nouns ("3 objects: ...") are totals and stay.
     """
+    text = _bare_adjective_items(text)
     heads: list[tuple[int, str]] = []
     for m in re.finditer(r"\b([2-9])\s+((?:[a-z]+\s+)?[a-z]+(?:es|s))\b", text):
         np_ = singular(m.group(2).strip())
@@ -227,7 +236,7 @@ def expand_groups(text: str, vocab: Vocabulary | None = None) -> str:
         return found[-1] if found else None
 
     def one(m: re.Match[str]) -> str:
-        head = head_before(m.start())
+        head = head_before(m.start()) or _named_head_before(text, m.start(), vocab)
         if head is None:
             return m.group(0)
         return f"{m.group(1)} {m.group(2)} {head}"
@@ -277,6 +286,41 @@ _KIND_NOUNS = frozenset(
      "utensil", "vegetable", "veggie", "container", "kind", "type", "sort", "color", "colour"}
 )
 """Group nouns whose items may be named without the noun ("2 soda cans, a sprite and a 7up")."""
+
+
+def _named_head_before(text: str, pos: int, vocab: Vocabulary | None) -> str | None:
+    """The noun of the object named last before ``pos``, without its adjectives: "the blue lego
+    brick and the pink one" -> "lego brick"."""
+    if vocab is None:
+        return None
+    said = [m for m in vocab.name_pattern.finditer(text, 0, pos)]
+    if not said:
+        return None
+    name = canonical_name(vocab, said[-1].group(0))
+    head = re.sub(rf"^(?:(?:{ADJECTIVES})\s+)+", "", name)
+    return head or None
+
+
+_ADJ_ITEM = rf"(?:(?:{ADJECTIVES})\s+)?(?:{ADJECTIVES})"
+
+
+def _bare_adjective_items(text: str) -> str:
+    """ "3 lego bricks (green, purple, small yellow)" -> "a green lego brick, a purple lego brick and
+    a small yellow lego brick": items said by their adjectives alone, after a counted noun."""
+
+    def spell(m: re.Match[str]) -> str:
+        head = singular(m.group("noun"))
+        items = [i.strip() for i in re.split(r"\s*,\s*(?:and\s+)?|\s+and\s+", m.group("items")) if i.strip()]
+        if len(items) != int(m.group("n")):
+            return m.group(0)
+        said = [f"a {i} {head}" for i in items]
+        return ", ".join(said[:-1]) + f" and {said[-1]}"
+
+    return re.sub(
+        rf"\b(?P<n>[2-9])\s+(?P<noun>(?:[a-z]+\s+)?[a-z]+s)\s*[(:]\s*"
+        rf"(?P<items>{_ADJ_ITEM}(?:\s*,\s*(?:and\s+)?{_ADJ_ITEM}|\s+and\s+{_ADJ_ITEM})+)\s*\)?",
+        spell, text,
+    )
 
 
 def _one_object_named(vocab: Vocabulary, np_: str, plural: str, after: str) -> bool:

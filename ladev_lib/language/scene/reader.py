@@ -197,6 +197,7 @@ class _Reader:
     def _domain(self, clause: str, previous: str | None, hint: str | None) -> str:
         # 'light blue cup' is an object, not lighting: look for keywords outside object names.
         masked = self.vocab.name_pattern.sub(" @n@ ", clause)
+        masked = re.sub(r"\b(?:a|an)\s+(?:\w+\s+)?lamps?\b", " @n@ ", masked)  # "a desk lamp": an object
         cam, light = CAMERA_WORDS.search(masked), LIGHT_WORDS.search(masked)
         if cam and light:
             return "camera" if cam.start() < light.start() else "lighting"
@@ -295,6 +296,7 @@ class _Reader:
             n = int(n_match.group(0)) if n_match else 1
             self.out.randoms += n
             self.out.random_positions.append(None)
+            self.out.recognised += 1
             return last
         add_random = re.compile(r"\b(?:add|place|put)\s+(?:a\s+|an\s+|1\s+)?random\s+(?:\w+\s+)?(?:object|item|one)\b")
         if add_random.search(text):
@@ -486,7 +488,11 @@ def read_description(
     reading = _Reader(vocab, slots, task_objects).read(protected)
     for name in dropped:
         canonical = canonical_name(vocab, name)
-        idx = [i for i, o in enumerate(reading.objects) if o.mention == canonical]
+        key = vocab.name_ids.get(canonical)
+        idx = [
+            i for i, o in enumerate(reading.objects)
+            if o.mention == canonical or (key is not None and vocab.name_ids.get(o.mention or "") == key)
+        ]
         if idx:
             del reading.objects[idx[-1]]
             if reading.total is not None and name not in replaced:

@@ -210,11 +210,22 @@ def _call(text: str) -> str:
     return words[task].format(src, tgt) + text[m.end():]
 
 
+_BARE_ARROW = re.compile(
+    r"^\s*(?P<src>[^>]+?)\s*(?:->|→|=>)\s*(?P<rel>put\s+in|put\s+on|into|onto|in|on|near|next\s+to|beside)\s+(?P<tgt>.+?)\s*$",
+    re.IGNORECASE,
+)
+
+
 def _arrow(text: str) -> str:
-    """'marker -> mug (put in)' -> 'put marker in mug'."""
+    """'marker -> mug (put in)' / 'marker -> in mug' -> 'put marker in mug'."""
     m = _ARROW.match(text)
     if m is None:
-        return text
+        bare = _BARE_ARROW.match(text)
+        if bare is None:
+            return text
+        rel = bare.group("rel").lower().split()[-1]
+        rel = {"into": "in", "onto": "on", "to": "near", "beside": "near"}.get(rel, rel)
+        return f"{'move' if rel == 'near' else 'put'} {bare.group('src')} {rel} {bare.group('tgt')}"
     rel = m.group("rel").lower().split()[-1]
     rel = {"into": "in", "onto": "on"}.get(rel, rel)
     verb = "move" if rel == "near" else "put"
@@ -291,7 +302,21 @@ def _read(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
     return found[0] if found is not None else None
 
 
-def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement]:
+def _it_as_named(seg: str, before: str, names: Mapping[str, str] | None) -> str:
+    """ "put the banana on it": 'it' after a relation is the object named last before the statement."""
+    if not names or not re.search(rf"\b{_RELATION_WORD}\s+it\b", seg, re.IGNORECASE):
+        return seg
+    pattern = "|".join(re.escape(n) for n in sorted(set(names.values()), key=len, reverse=True))
+    said = list(re.finditer(rf"(?<![a-z])(?:{pattern})(?![a-z])", before.lower()))
+    if not said:
+        return seg
+    return re.sub(rf"\b({_RELATION_WORD})\s+it\b", rf"\1 the {said[-1].group(0)}", seg, count=1, flags=re.IGNORECASE)
+
+
+_RELATION_WORD = r"(?:on top of|onto|on|into|inside|in|next to|near|beside)"
+
+
+def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, str] | None = None) -> list[TaskStatement]:
     found: list[TaskStatement] = []
     spans = _segments(text)
     for i, (s, e) in enumerate(spans):
@@ -348,6 +373,12 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
             else:
                 found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
             continue
+        if _ARROW.match(seg) or _BARE_ARROW.match(seg):
+            # "foam brick -> near blue cube": a line that maps an object to where it goes
+            frame = _read(seg, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, _arrow(seg).strip(), frame, 1))
+                continue
         goes = _GOES.match(seg)
         if (
             goes is not None and IMPERATIVE.match(seg) is None
@@ -374,6 +405,7 @@ def _statements(text: str, reader: Callable[[str], Frame]) -> list[TaskStatement
         m = IMPERATIVE.match(seg)
         if m is None:
             continue
+        seg = _it_as_named(seg, text[:s], names)
         after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
         frame = _read(seg[m.end():], reader)
         if frame is None:
@@ -415,7 +447,7 @@ def find_task(
     # "put the marble - not the die - on the box", "(not the carrot)": asides that name what is not meant
     text = re.sub(r"\s[—–-]+\s*not\s+(?:the|a|an)\s+[^—–\n.-]+?\s*[—–-]+\s", " ", text, flags=re.IGNORECASE)
     text = re.sub(r"\(\s*not\s+(?:the|a|an)\s+[^)]*\)", " ", text, flags=re.IGNORECASE)
-    statements = _statements(text, read)
+    statements = _statements(text, read, names)
     strong = [s for s in statements if s.strength == 2]
     weak = [s for s in statements if s.strength == 1]
     unreadable = [s for s in statements if s.strength == 0]

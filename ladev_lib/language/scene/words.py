@@ -198,6 +198,7 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     # "a pair of lemons" (not "a pair of scissors": one object)
     t = re.sub(r"\ba (?:pair|couple) of\b(?! (?:scissors|pliers|tongs|tweezers|glasses|shears|goggles|pincers|snips|cutters)\b)", "two", t)
     t = re.sub(r"\ba trio of\b", "three", t)
+    t = re.sub(r"(?<![\d.])(\d+)[ \t]*x[ \t]+(?=[a-z])", r"\1 ", t)  # "2x random", "3 x apple": a count
     # "something else of your choice", "one more thing, anything": a free choice
     t = re.sub(
         r"\b(?:something|anything|one (?:more )?thing|another (?:thing|object|item))(?: else)?"
