@@ -240,6 +240,16 @@ class _Reader:
         ids = self.vocab.name_ids
         return a == b or (a in ids and ids.get(a) == ids.get(b))
 
+    def _by_head(self, reference: Any) -> Any:
+        """A reference by head noun ("near the cup") to the one object said with that noun ("the
+        large blue cup"), among the described objects and the task's."""
+        if not isinstance(reference, str) or not reference or reference in self.vocab.name_ids:
+            return reference
+        head = reference.split()[-1]
+        said = {o.mention for o in self.out.objects if o.mention} | set(self.task_objects)
+        fits = {m for m in said if m != reference and m.split()[-1] in (head, singular(head))}
+        return fits.pop() if len(fits) == 1 else reference
+
     def _distributes(self, clause: str, found: list[_ObjectOp]) -> bool:
         """Whether a position said after the last of coordinated objects is said of all of them.
 
@@ -332,6 +342,7 @@ class _Reader:
         if rel is not None:
             position, text = rel
             consumed = True
+            position["reference"] = self._by_head(position.get("reference"))
 
         # Regions: "on the left", "front right corner", "in the middle".
         reg = find_region(text)
