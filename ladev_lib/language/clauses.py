@@ -144,10 +144,29 @@ def split_clauses(tokens: Sequence[Token]) -> list[Clause]:
             flush("without")
         elif (tok.kind == "CONJ" or tok.text == ",") and _action_follows(tokens, i + 1):
             flush(tok.text if tok.kind == "CONJ" else intro if not current else ",")
+        elif tok.kind == "CONJ" and tok.text == "and" and _gapped_placement(current, tokens, i + 1):
+            flush("and")  # "place the block on the right and the can on the left": a second placement
         else:
             current.append(tok)
     flush(None)
     return clauses
+
+
+def _gapped_placement(current: Sequence[Token], tokens: Sequence[Token], i: int) -> bool:
+    """ "... and the can on the left": after a clause with a verb and a relation, a noun phrase
+    with a relation of its own repeats the verb (gapping)."""
+    relations = [t for t in current if t.kind == "REL"]
+    if not any(t.kind == "VERB" for t in current) or not relations or relations[-1].text == "between":
+        return False
+    j = i
+    while j < len(tokens) and tokens[j].kind in ("DET", "QUANT"):
+        j += 1
+    if j == i:
+        return False  # a determiner opens the gapped phrase ("and the can on the left")
+    start = j
+    while j < len(tokens) and tokens[j].kind in ("OBJ", "WORD"):
+        j += 1
+    return j > start and j < len(tokens) and tokens[j].kind == "REL"
 
 
 def _action_follows(tokens: Sequence[Token], i: int) -> bool:
@@ -459,7 +478,7 @@ _FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
 """Head nouns that name a part of the object before them ("the cabinet top")."""
 _NOT_NOUNS = frozenset(
-    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing", "itself", "again", "too", "also", "first", "instead", "already", "anyway", "though", "so", "oh", "ok", "okay", "well", "alright", "hey", "hi", "yes", "yeah", "hmm", "um", "uh"]
+    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing", "itself", "again", "too", "also", "first", "instead", "already", "anyway", "though", "so", "oh", "ok", "okay", "well", "alright", "hey", "hi", "yes", "yeah", "hmm", "um", "uh", "robot", "manipulator", "agent", "policy", "end", "episode", "trial", "beginning", "start", "success", "aim", "purpose"]
 )
 """Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
 

@@ -37,7 +37,7 @@ _RESTATE = (
 )
 _MARKER = re.compile(
     r"\s*(?:-+|—|–|,|;|\(|\.\.\.)\s*"
-    rf"(?:{_MARKER_WORDS}+{_RESTATE}*|(?<=\.\.\.)\s*(?:make (?:that|it)|change (?:that|it) to)\b[\s,:]*)"
+    rf"(?:{_MARKER_WORDS}+{_RESTATE}*|(?:(?<=\.\.\.)|(?<=[-—–]))\s*(?:make (?:that|it)|change (?:that|it) to)\b[\s,:]*)"
 )
 """A self-correction: "- no, make that", ", sorry,", "... actually", "... make that"."""
 _DIRECTIONS = (

@@ -68,6 +68,8 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     text = re.sub(r"(?<![\d.])(\d+)\s*/\s*(\d+)(?![\d.])", lambda m: f" {100 * int(m.group(1)) / max(int(m.group(2)), 1):g}% ", text)
     text = re.sub(r"\b(\d) quarters\b", lambda m: f" {int(m.group(1)) * 25}% ", text)
     text = re.sub(r"\b(\d) tenths?\b", lambda m: f" {int(m.group(1)) * 10}% ", text)
+    text = re.sub(r"\b(\d) fifths\b", lambda m: f" {int(m.group(1)) * 20}% ", text)
+    text = re.sub(r"\b(\d) thirds\b", lambda m: f" {round(int(m.group(1)) * 100 / 3)}% ", text)
     text = re.sub(r"\b(?:a )?tenth\b", " 10% ", text)
     # "at 60% of default", "dim to 40% of normal", "85% brightness": a level, not a change
     level = re.search(
@@ -145,7 +147,7 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
             translation = [a + b * scale for a, b in zip(translation, values, strict=True)]
         moved = True
         text = text.replace(key, " ")
-    for part in re.split(r"\band\b|,|\bthen\b|\bbut\b|\s\+\s", text):
+    for part in re.split(r"\band\b|,|\bthen\b|\bbut\b|\bwhile\b|\bwhilst\b|\s\+\s", text):
         if re.search(r"\b(?:dont|do not|not|never|without|no)\s+(?:\w+\s+)?(?:rotat|tilt|pan|roll|yaw|pitch|turn|mov|shift|translat)", part):
             continue  # "don't rotate it"
         t, r, ok = camera_motion(part)
@@ -235,9 +237,14 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
             rotation[2] += value
         return translation, rotation, True
     move_verb = re.search(
-        r"\b(mov\w*|shift\w*|translat\w*|slid\w*|displac\w*|rais\w*|lower\w*|offset|push\w*|pull\w*|nudg\w*)\b",
+        r"\b(mov\w*|shift\w*|translat\w*|slid\w*|displac\w*|rais\w*|lower\w*|offset|push\w*|pull\w*|nudg\w*|"
+        r"lift\w*|elevat\w*|dolly|dollie\w*|crane\w*|boom\w*|truck\w*)\b",
         part,
     )
+    if move_verb is not None and dir_word is None:
+        # verbs that carry their direction: "lifted 5 cm", "dolly 2 cm" (in, toward the table)
+        verb = move_verb.group(1)
+        dir_word = "up" if verb.startswith(("lift", "elevat", "rais")) else "forward" if verb.startswith("dolly") else None
     comparative = dir_word in ("higher", "lower", "closer", "farther", "further", "raised", "lowered")
     if dist is None and ((move_verb is None and not comparative) or dir_word is None):
         return translation, rotation, False
@@ -254,7 +261,7 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
     }.get(dir_word, (1, 1.0))
     if move_verb is not None and move_verb.group(1).startswith("rais"):
         axis, sign = 2, 1.0
-    elif move_verb is not None and move_verb.group(1).startswith("lower") and dir_word is None:
+    elif move_verb is not None and move_verb.group(1).startswith("lower") and dir_word in (None, "left"):
         axis, sign = 2, -1.0
     translation[axis] += sign * abs(value)
     return translation, rotation, True

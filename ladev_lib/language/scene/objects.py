@@ -64,6 +64,8 @@ def find_relation(vocab: Vocabulary, text: str) -> tuple[dict[str, Any], str] | 
 def _reference(vocab: Vocabulary, rest: str, strict: bool) -> tuple[str, int] | None:
     if re.match(r"\s*(?:them|those|these|they|it|that|this|me|us|you)\b", rest):
         return None  # a pronoun: no object of its own ("a lamp behind them")
+    if re.match(r"\s*(?:the\s+)?(?:front|back|far|near|left|right|rear)\s+(?:edge|side|end|corner)\b", rest):
+        return None  # "near the front edge": a region of the table
     m = re.match(r"\s*(?:(?:the|a|an)\b)?\s*", rest)
     start = m.end() if m else 0
     name = vocab.name_pattern.match(rest, start)
@@ -143,7 +145,7 @@ def unknown_phrase(text: str) -> str | None:
             continue
         if w in SCENE_NOUNS:
             nxt = words[i + 1] if i + 1 < len(words) else ""
-            if not run and introduced and nxt.isalpha() and nxt not in FILLERS and nxt not in STOP_PREPOSITIONS:
+            if not run and nxt.isalpha() and nxt not in FILLERS and nxt not in STOP_PREPOSITIONS and nxt not in SCENE_NOUNS:
                 run.append(w)  # "a desk lamp": a scene noun as a modifier
                 continue
             if run:

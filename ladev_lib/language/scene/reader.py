@@ -197,7 +197,8 @@ class _Reader:
     def _domain(self, clause: str, previous: str | None, hint: str | None) -> str:
         # 'light blue cup' is an object, not lighting: look for keywords outside object names.
         masked = self.vocab.name_pattern.sub(" @n@ ", clause)
-        masked = re.sub(r"\b(?:a|an)\s+(?:\w+\s+)?lamps?\b", " @n@ ", masked)  # "a desk lamp": an object
+        # "a desk lamp", "desk lamp": an object, not the lighting
+        masked = re.sub(r"\b(?:(?:a|an)\s+(?:\w+\s+)?|(?:desk|table|floor|reading|bedside|lava)\s+)lamps?\b", " @n@ ", masked)
         cam, light = CAMERA_WORDS.search(masked), LIGHT_WORDS.search(masked)
         if cam and light:
             return "camera" if cam.start() < light.start() else "lighting"

@@ -37,13 +37,13 @@ _VERB = (
 )
 _AGENT = r"(?:the\s+)?(?:robot|arm|agent|gripper|policy|system|manipulator|model|it|they|you|we)"
 _MODAL = (
-    r"(?:should|must|will|would|shall|can|could|may|might|needs?\s+to|has\s+to|have\s+to|is\s+to|are\s+to|"
+    r"(?:should|must(?:\s+to)?|will|would|shall|can|could|may|might|needs?\s+to|has\s+to|have\s+to|is\s+to|are\s+to|"
     r"is\s+supposed\s+to|is\s+expected\s+to|is\s+meant\s+to|is\s+going\s+to|ought\s+to|'ll|is\s+asked\s+to|"
     r"gets?\s+to|tries\s+to|try\s+to|attempts?\s+to|is\s+able\s+to|manages?\s+to)"
 )
 LABEL = re.compile(
     r"(?:^|(?<=[\s(\[{|;,.:•*-]))(?:the\s+)?(?:main\s+|actual\s+|robot(?:'s)?\s+|its\s+)?"
-    r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt)"
+    r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt|aim|purpose)"
     r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
     r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+(?:will|should|would|shall|must)\s+be\s+(?:to\s+)?|"
     r"\s+(?=" + _VERB + r"\b)|\s+(?=(?:pick_up|move_near|put_on|put_in)\s*\())",
@@ -83,6 +83,19 @@ _SETTING_WORDS = frozenset(
     {"brightness", "light", "lights", "lighting", "illumination", "exposure", "camera", "cam", "view", "viewpoint",
      "angle", "intensity", "dimmer"}
 )
+_RETRACT = re.compile(
+    r"^[\s.…,;:-]*(?:(?:hmm+|no+|nope|wait|sorry|actually|oops|scratch that|on second thought|change of plan)\b[\s,.!:;-]*)+"
+    rf"(?={_VERB}\b)",
+    re.IGNORECASE,
+)
+"""A statement that takes the one before back ("no, put it in the cup instead")."""
+END_STATE = re.compile(
+    r"(?:^|(?<=[\s,;:]))(?:at the end(?: of (?:the|this|each) (?:episode|trial|run|rollout))?|by the end(?: of (?:the|this) "
+    r"(?:episode|trial|run))?|in the end|success(?:\s+(?:means|is when|is that|is defined as|=|:))|the end state is(?: that)?|"
+    r"the (?:desired|target|final) (?:state|outcome|result) is(?: that)?)\s*[,:]?\s*(?=the\s)",
+    re.IGNORECASE,
+)
+"""A stated end state ("success means the marble ends up in the cup"): the task, when it reads as one."""
 IMPERATIVE = re.compile(
     rf"^\s*(?:(?:please|now|then|and|just|finally|simply|so|also|next|oh|ok|okay|well|alright|lastly)\s*,?\s+)*(?={_VERB}\b)",
     re.IGNORECASE,
@@ -236,8 +249,16 @@ _ING = {"grabb": "grab", "putt": "put", "sett": "set", "dropp": "drop", "gett": 
         "plac": "place", "mov": "move", "slid": "slide"}
 
 
+_FOR_AGENT = re.compile(
+    r"^\s*(?:for\s+(?:the\s+)?(?:robot|arm|manipulator|agent|gripper|policy|it)\s+to\s+|that\s+(?:the\s+)?"
+    r"(?:robot|arm|manipulator|agent|gripper|policy|it)\s+)",
+    re.IGNORECASE,
+)
+
+
 def _normalise(candidate: str) -> str:
     """A statement as an instruction: 'one of the carrots', arrows, '-ing' and third-person verbs undone."""
+    candidate = _FOR_AGENT.sub("", candidate)  # "(the aim is) for the manipulator to deposit the die ..."
     # "one of the carrots" -> "the carrot"
     candidate = re.sub(
         r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+((?:\w+\s+){0,2}?\w+?)(?:e?s)\b"
@@ -272,6 +293,16 @@ def _read_one(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
             return None
         return frame
     return None
+
+
+def _needs_scene(candidate: str, reader: Callable[[str], Frame]) -> bool:
+    """A command of the four tasks whose object or destination several catalog objects fit."""
+    frame = reader(_normalise(candidate))
+    if frame.task not in TASKS or frame.object is None or not frame.ok:
+        return False
+    if frame.task != "pick_up" and (frame.destination is None or _is_place(frame.destination)):
+        return False
+    return any(p is not None and p.candidates for p in (frame.object, frame.destination))
 
 
 def _read_span(candidate: str, reader: Callable[[str], Frame]) -> tuple[Frame, int] | None:
@@ -329,6 +360,9 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
         need = NEED_THE.search(seg)
         if marked is None and need is not None and _read_span(seg[need.start():], reader) is not None:
             marked = need.start()  # "I need the knife near the fork": an end state is the task
+        end_state = END_STATE.search(seg)
+        if marked is None and end_state is not None and _read_span(seg[end_state.end():], reader) is not None:
+            marked = end_state.end()  # "At the end of the episode the carrot should be inside the basket"
         if marked is not None:
             span = _read_span(seg[marked:], reader)
             frame = span[0] if span is not None else None
@@ -402,6 +436,16 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             else:
                 found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
             continue
+        retracted = _RETRACT.match(seg)
+        if retracted is not None and found and found[-1].frame.object is not None:
+            # "... place the strawberry on the sponge... hmm, no, put it in the cup instead": the new task
+            said = re.sub(rf"^\s*({_VERB})\s+it\b", rf"\1 the {found[-1].frame.object.text}", seg[retracted.end():],
+                          flags=re.IGNORECASE)
+            said = re.sub(r"\s*\binstead\b\s*", " ", said).strip()
+            frame = _read(said, reader)
+            if frame is not None:
+                found.append(TaskStatement(s, e, said, frame, 3))
+                continue
         m = IMPERATIVE.match(seg)
         if m is None:
             continue
@@ -409,6 +453,9 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
         after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
         frame = _read(seg[m.end():], reader)
         if frame is None:
+            if _needs_scene(seg[m.end():], reader):
+                # "put the small yellow brick on the sponge": which brick, only the scene says
+                found.append(TaskStatement(s, e, _normalise(seg[m.end():].strip()), reader(""), -2))
             continue
         if _INDEFINITE.match(after_verb) and (
             frame.object is None or re.search(rf"\b{re.escape(frame.object.head)}", text[:s], re.IGNORECASE) is None
@@ -448,14 +495,13 @@ def find_task(
     text = re.sub(r"\s[—–-]+\s*not\s+(?:the|a|an)\s+[^—–\n.-]+?\s*[—–-]+\s", " ", text, flags=re.IGNORECASE)
     text = re.sub(r"\(\s*not\s+(?:the|a|an)\s+[^)]*\)", " ", text, flags=re.IGNORECASE)
     statements = _statements(text, read, names)
-    strong = [s for s in statements if s.strength == 2]
-    weak = [s for s in statements if s.strength == 1]
     unreadable = [s for s in statements if s.strength == 0]
     maybe = [s for s in statements if s.strength == -2]
-    chosen = strong[-1] if strong else (weak[-1] if weak else None)
+    ranked = [(s.strength, k, s) for k, s in enumerate(statements) if s.strength >= 1]
+    chosen = max(ranked, key=lambda r: (r[0], r[1]))[2] if ranked else None  # strongest, then last
     # a statement to read in the scene leaves the text unless it introduces objects ("set up a table with a ...")
     maybe_out = [s for s in maybe if not _INTRODUCES.search(s.text)]
-    removed = [s for s in statements if s.strength in (2, 0, -1)] + maybe_out + ([chosen] if chosen is not None else [])
+    removed = [s for s in statements if s.strength in (3, 2, 0, -1)] + maybe_out + ([chosen] if chosen is not None else [])
     rest = text
     spans = {(s.start, s.end): s.replacement for s in removed}
     for (a, b), keep in sorted(spans.items(), reverse=True):

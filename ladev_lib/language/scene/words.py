@@ -70,7 +70,8 @@ STOP_PREPOSITIONS = {
 
 HEADERS = re.compile(
     r"(?:^|(?<=[.;!?])\s*)\s*(number and details of objects|details of objects|objects and details|"
-    r"object configuration|objects|environmental setup|environment setup|environment|setup|scene)\s*:(?!\s*\d)",
+    r"object configuration|objects|items|props|spawn|environmental setup|environment setup|environment|setup|scene)"
+    r"\s*:(?!\s*\d)",
 )
 _COORD2 = re.compile(
     rf"[\(\[]\s*(?:x\s*=\s*)?({NUM})\s*(cm|mm|m)?\s*[,;]\s*(?:y\s*=\s*)?({NUM})\s*(cm|mm|m)?\s*[\)\]]"
