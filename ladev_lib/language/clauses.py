@@ -450,6 +450,8 @@ class ClauseReader:
         cls = verb.verb_class
         if cls in ("pick", "place") and c.recipient:
             return "other"
+        if cls == "release" and object_places:
+            return "place"  # "release it onto the cutting board": set down there
         if cls == "pick":
             if reverse or (reverse_particle and not object_places):
                 c.reverse_pick = bool(reverse) and not c.recipient
@@ -488,6 +490,8 @@ def _free_words(words: tuple[str, ...]) -> tuple[str, ...]:
     words = tuple(w for w in words if w not in lx.QUANTIFIERS)
     if "of" in words[1:-1]:
         k = words.index("of")
+        if words[k - 1] in lx.MEASURE_NOUNS:
+            return words[k + 1 :]  # "stick of chalk": chalk
         if words[k - 1] in lx.CONTAINER_NOUNS:
             return (*words[k + 1 :], *words[:k])
     return words

@@ -140,6 +140,9 @@ class Grounder:
             [o.key for o in scene if phrase.object_id and o.key == phrase.object_id],
         ):
             if len(set(exact)) == 1:
+                namesakes = [] if phrase.modifiers else self._namesakes(phrase, exact[0], scene)
+                if namesakes:
+                    return self._ambiguous(phrase, [exact[0], *namesakes])  # "the mug": the red one or the blue one
                 return Grounding(phrase, exact[0], "exact")
             if len(exact) > 1:
                 return self._ambiguous(phrase, exact)
@@ -173,6 +176,12 @@ class Grounder:
         named = f" ({phrase.object_id})" if phrase.object_id else ""
         return Grounding(phrase, None, "absent", reason=f"'{phrase.text}'{named} is not in the scene")
 
+    @staticmethod
+    def _namesakes(phrase: NounPhrase, key: str, scene: Sequence[SceneObject]) -> list[str]:
+        """Other scene objects whose names end in the phrase's one word ("blue mug" for "mug")."""
+        head = _singular(phrase.head)
+        return [o.key for o in scene if o.key != key and any(_singular(n.split()[-1]) == head for n in o.names)]
+
     def _ambiguous(self, phrase: NounPhrase, keys: Sequence[str]) -> Grounding:
         keys = tuple(dict.fromkeys(keys))
         return Grounding(
@@ -197,10 +206,11 @@ class Grounder:
         if kinds and not by_group and head not in heads and self.nouns is not None:
             # what kind of thing a name is: "the trash can" is a bin; for a plain name also the other
             # way ("the tool" for a trowel), which the catalog's own groups give for its objects
+            # (for a catalog object, a group noun the catalog defines is its own groups' business)
+            general = obj.catalog_id is None or head not in lx.HYPERNYMS
             by_group = any(
-                self.nouns.is_a(phrase.text, n) or (obj.catalog_id is None and self.nouns.is_a(n, phrase.text))
-                for n in obj.names
-            )
+                self.nouns.is_a(phrase.text, n) or (general and self.nouns.is_a(n, phrase.text)) for n in obj.names
+            ) or (general and any(self.nouns.is_a(c, phrase.text) for c in _contents(obj)))
         if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
             if phrase.object_id is None or phrase.object_id == obj.catalog_id:
                 return False
@@ -334,6 +344,16 @@ class Grounder:
 
 _COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
 _COLOUR_ALIASES = {"violet": "purple", "gray": "grey"}
+
+
+def _contents(obj: SceneObject) -> list[str]:
+    """What a packaged object holds: "milk" in "milk carton" (a drink, though a carton is not)."""
+    out = []
+    for n in obj.names:
+        words = n.split()
+        if len(words) > 1 and words[-1] in lx.CONTAINER_NOUNS:
+            out.append(" ".join(words[:-1]))
+    return out
 
 
 def _other_catalog_object(phrase: NounPhrase, obj: SceneObject) -> bool:

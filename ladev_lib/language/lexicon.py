@@ -161,7 +161,7 @@ _add_relations(
     "near,nearby,near to,nearer to,next to,right next to,close to,closer to,close by,beside,besides,"
     "by,by the side of,alongside,adjacent to,up to,over to,over by,right by,toward,towards,to,"
     "in the vicinity of,in proximity to,in the proximity of,at the side of,next door to,"
-    "in the direction of",
+    "in the direction of,in close proximity to,in the immediate vicinity of,close beside,right beside",
 )
 _add_relations("on", "on,onto,on to,on top of,on the top of,upon,atop,over onto")
 _add_relations("in", "in,into,in to,inside,inside of,within,down into")
@@ -265,9 +265,11 @@ PRONOUNS = frozenset({"it", "that", "this", "them"})
 PLURAL_PRONOUNS = frozenset({"them", "these", "those"})
 RELATIVE_PRONOUNS = frozenset({"that", "which", "who"})
 CONTAINER_NOUNS = frozenset(
-    {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair"}
+    {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair", "tube"}
 )
 """Nouns in "a can of X": X names the object."""
+MEASURE_NOUNS = frozenset({"piece", "slice", "stick", "bar", "roll", "sheet", "bunch", "loaf", "head", "clove", "lump", "chunk"})
+"""Nouns in "a stick of chalk": the thing is X itself (a free phrase's head is X)."""
 RECIPIENTS = frozenset({"me", "us", "him", "her"})
 """After an action verb these make it a hand-over ("bring me the can")."""
 QUANTIFIERS = frozenset(
@@ -293,7 +295,11 @@ SEQUENCE = (
     ("then",), ("afterwards",), ("afterward",), ("finally",), ("before",),
     ("after",), ("once",), ("later",), ("subsequently",),
 )
-RESULT = (("so", "that"), ("such", "that"), ("so",), ("until",), ("till",), ("in", "order", "that"))
+RESULT = (
+    ("so", "that"), ("such", "that"), ("so",), ("until",), ("till",), ("in", "order", "that"),
+    ("in", "such", "a", "way", "that"), ("in", "such", "a", "manner", "that"), ("in", "a", "way", "that"),
+    ("making", "sure", "that"), ("making", "sure"), ("ensuring", "that"), ("ensuring",),
+)
 SKIPPABLE = frozenset(
     ["please", "kindly", "just", "also", "now", "then", "carefully", "gently", "slowly", "quickly", "first", "simply", "immediately", "really", "try", "to"]
 )

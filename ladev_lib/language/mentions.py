@@ -90,6 +90,12 @@ class NameIndex:
     def display_name(self, object_id: str) -> str:
         return self.catalog.get(object_id).display_name
 
+    def head_nouns(self, object_id: str) -> set[str]:
+        """The last words of an object's names ("lid" for the skillet lid, also called "pan lid")."""
+        if object_id not in self.catalog:
+            return set()
+        return {normalize_name(n).split()[-1] for n in self.catalog.get(object_id).names}
+
     # -- head nouns ------------------------------------------------------------
     def is_object_noun(self, word: str) -> bool:
         return (

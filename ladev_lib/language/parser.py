@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -252,6 +252,11 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)  # "bring it over to the rack and set it on top"
     if a.kind == "place" and b.kind == "release":
         return _Action("place", both)
+    lowers = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma in _SET_DOWN
+    if a.kind == "place" and lowers and any(g.refs and g.phrase in _OVER for g in a.governed()):
+        return _Action("place", both)  # "move it above the board, lower it ...": a step of setting it down there
+    if a.kind == "place" and b.kind == "place" and _over_then_onto(a, b):
+        return _Action("place", both)  # "move it above the board ... release it onto the board"
     if a.kind == "place" and b.kind == "place" and all((c.intro or "") == "result" for c in b.clauses):
         ends = [{r.object_id for g in act.governed() if g.relation in PLACEMENT for r in g.refs} for act in (a, b)]
         if ends[0] and ends[0] == ends[1]:
@@ -260,6 +265,19 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
     if a.kind == "place" and leaves:
         return _Action("place", both)  # "... and leave it there"
     return None
+
+
+_SET_DOWN = frozenset({"lower", "drop", "set", "put", "place", "lay", "rest"})
+"""Verbs that set down, without a destination, what was just carried somewhere ("lower it")."""
+
+
+def _over_then_onto(a: _Action, b: _Action) -> bool:
+    """``a`` brings the object over a thing only (no placement); ``b`` sets it on / in that thing."""
+    over = [g for g in a.governed() if g.refs and g.phrase in _OVER]
+    if len(over) != 1 or any(g.relation in PLACEMENT and g.refs for g in a.governed()):
+        return False
+    placed = [g for g in b.governed() if g.refs and g.relation in PLACEMENT]
+    return bool(placed) and {r.object_id for g in placed for r in g.refs} == {r.object_id for r in over[0].refs}
 
 
 _SAME_PLACE = frozenset({"top", "there", "top of it"})
@@ -291,10 +309,18 @@ def _completes_destination(a: _Action, b: _Action) -> bool:
 
 
 class _Composer:
-    def __init__(self, text: str, clauses: list[Clause], in_scene: bool = False) -> None:
+    def __init__(
+        self,
+        text: str,
+        clauses: list[Clause],
+        in_scene: bool = False,
+        head_nouns: Callable[[str], set[str]] | None = None,
+    ) -> None:
         self.text = text
         self.clauses = clauses
         self.in_scene = in_scene
+        self.head_nouns = head_nouns
+        """A catalog object's head nouns ("lid" for the skillet lid), to tell two phrases apart."""
         """Read in a scene's context: two phrases the catalog reads as one object ("the small
         bowl", "the large bowl") may be two objects of the scene; grounding tells."""
         self.reasons: list[str] = []
@@ -332,6 +358,8 @@ class _Composer:
             task, source, target = self._roles(main)
             if main.kind == "place_nodest":
                 dropped.append("destination")
+        if not self.in_scene and source is not None and target is not None:
+            self._tell_apart(source, target)  # "put the lid on the pan": the catalog's "pan lid" is not the pan
         src_id = source.object_id if source else None
         tgt_id = target.object_id if target else None
         told_apart = self.in_scene and source is not None and target is not None and source.words != target.words
@@ -359,6 +387,22 @@ class _Composer:
             reason=reason,
             notes=notes,
         )
+
+    def _tell_apart(self, source: Ref, target: Ref) -> None:
+        """Two phrases with different words that the catalog reads as one object name two objects:
+        the one whose head noun is not a head noun of the object's names is free text."""
+        if source.object_id is None or source.object_id != target.object_id or source.free:
+            return
+        if not source.words or not target.words or source.words == target.words:
+            return
+        heads = self.heads_of(source.object_id)
+        for ref in (target, source):
+            if ref.words[-1] not in heads:
+                ref.object_id = FREE + " ".join(ref.words)
+                return
+
+    def heads_of(self, object_id: str) -> set[str]:
+        return self.head_nouns(object_id) if self.head_nouns is not None else set()
 
     def _phrase(self, ref: Ref | None, qualifiers: list[Governed] | None = None) -> NounPhrase | None:
         """The noun phrase of a role: the antecedent's words for a pronoun; its qualifiers."""
@@ -439,6 +483,11 @@ class _Composer:
             if r.quantity:
                 self.reasons.append(f"'{r.text}' asks for a quantity")
         ids = list(dict.fromkeys(r.object_id for r in refs if r.object_id))
+        said = {r.words for r in refs if r.object_id and not r.pronoun and r.words}
+        if len(ids) == 1 and len(said) > 1 and not self.in_scene:
+            heads = self.heads_of(ids[0])
+            if any(w[-1] not in heads for w in said):  # "the pan and the lid": two objects, one catalog name
+                self.reasons.append(f"more than one {role}: " + ", ".join(" ".join(w) for w in sorted(said)))
         if len(ids) > 1:
             self.reasons.append(f"more than one {role}: {', '.join(_shown(i) for i in ids)}")
         if not ids and required and not any(r.problem for r in refs):
@@ -559,7 +608,8 @@ class InstructionParser:
             for r in c.refs()
             if r.free and r.object_id is not None and r.free_problem
         }
-        return _Composer(text, clauses, in_scene=scene is not None).compose(), problems
+        composer = _Composer(text, clauses, in_scene=scene is not None, head_nouns=self.index.head_nouns)
+        return composer.compose(), problems
 
     def canonical_text(self, text: str) -> str:
         """The instruction with every object name replaced by its display name.

@@ -232,7 +232,7 @@ def _relation_at(words: list[str], i: int, index: NameIndex) -> tuple[tuple[str,
         if kind is None:
             continue
         nxt = i + n
-        if phrase == ("of",) and i > 0 and words[i - 1] in lx.CONTAINER_NOUNS:
+        if phrase == ("of",) and i > 0 and (words[i - 1] in lx.CONTAINER_NOUNS or words[i - 1] in lx.MEASURE_NOUNS):
             return None  # "a can of coca-cola": one noun phrase, not a relation
         if phrase == ("to",) and not _starts_phrase(words, nxt, index):
             return None  # "to" before a verb marks an infinitive ("try to pick")

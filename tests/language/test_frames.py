@@ -139,3 +139,26 @@ def test_general_forms_over_free_phrases(text, expected):
     assert (frame.destination.text if frame.destination else None) == dest
     if task != "other":
         assert frame.ok, frame.reason
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # the catalog's "pan lid" is not a pan: two phrases, two objects
+        ("set the lid on the pan", ("put_on", "lid", "pan")),
+        # a measure noun: the thing is what it measures
+        ("drop the stick of chalk into the box", ("put_in", "chalk", "box")),
+        # manner and end-state clauses that restate the task
+        ("shift the vase next to the lamp in such a way that the lamp is not moved", ("move_near", "vase", "lamp")),
+        ("place the cup so that it sits in close proximity to the jug", ("move_near", "cup", "jug")),
+        # carried over a thing, set down and released onto it
+        ("grasp the tile, move it above the tray, lower it and release it onto the tray", ("put_on", "tile", "tray")),
+    ],
+)
+def test_more_general_forms(text, expected):
+    test_general_forms_over_free_phrases(text, expected)
+
+
+def test_two_phrases_one_catalog_name_are_two_objects():
+    frame = read_instruction("put the pan and the lid in the sink")
+    assert not frame.ok and frame.reason is not None and "more than one object" in frame.reason

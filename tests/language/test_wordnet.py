@@ -62,3 +62,16 @@ def test_grounding_by_kind_after_names_and_heads(minilm, nouns):
 def test_without_wordnet_grounding_goes_on_without_kinds(minilm):
     g = Grounder(load_catalog(), minilm, nouns=None)
     assert g.ground(np_("tool"), g.scene(["bucket", "pot", "trowel"])).how != "kind"
+
+
+def test_kinds_in_any_sense_and_packaged_contents(minilm, nouns):
+    g = Grounder(load_catalog(), minilm, nouns=nouns)
+    assert g.ground(np_("cover"), g.scene(["bowl", "lid", "pan"])).how == "kind"  # a lid is a cover
+    assert g.ground(np_("drink"), g.scene(["basket", "butter", "milk carton"])).object_id == "milk carton"
+
+
+def test_a_bare_head_noun_is_ambiguous_beside_a_plain_namesake(minilm):
+    # "red mug" is a catalog name, "blue mug" a plain one: "the mug" says neither
+    g = Grounder(load_catalog(), minilm)
+    scene = g.scene(["blue mug", "kettle", "red mug"])
+    assert g.ground(NounPhrase("mug", "mug", (), "025_mug"), scene).how == "ambiguous"
