@@ -150,8 +150,11 @@ class _Reader:
             )
             or hint == "objects"
         )
-        # "yaw: +4.5 degrees": an axis and its value stay together
-        sentence = re.sub(r"\b(yaw|pitch|roll|dx|dy|dz)\s*[:=]\s*(?=[-+]?\d)", r"\1 ", sentence)
+        # "yaw: +4.5 degrees", "up: 2 cm": an axis or direction and its value stay together
+        sentence = re.sub(
+            r"\b(yaw|pitch|roll|dx|dy|dz|up|down|forward|backward|back|left|right|dolly|in|out)\s*[:=]\s*(?=[-+]?\d)",
+            r"\1 ", sentence,
+        )
         # "towel: back" / "towel = left": a position given as a value
         sentence = re.sub(
             r"\s*[:=]\s*(?=(?:left|right|front|back|center|centre|middle|rear|far side|near side)\b)", " at the ", sentence

@@ -141,7 +141,9 @@ def _as_command(clause: str) -> str:
 _INTRODUCES = re.compile(r"\b(?:a|an|some|\d+|one|two|three|four|five|six|seven)\s", re.IGNORECASE)
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
 _NEW_CLAUSE = re.compile(
-    r",?\s*(?:and\s+|but\s+|while\s+|whereas\s+|when\s+)?(?:there|it|they|a|an|the|\d+)\b", re.IGNORECASE
+    r",?\s*(?:and\s+|but\s+|while\s+|whereas\s+|when\s+|with\s+|plus\s+)?(?:there|it|they|a|an|the|\d+)\b"
+    r"|,\s*[a-z][a-z ]{1,20}:",  # ", light: darker 0.35": the next field of a key-value line
+    re.IGNORECASE
 )
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
 

@@ -196,6 +196,7 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("’", "'").replace("‘", "'").replace("“", '"').replace("”", '"')
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
+    t = re.sub(r"\s*\}+\s*,?", " ; ", t.replace("{", " "))  # "{objects: [...], light: ...}": braces as separators
     # "a pair of lemons" (not "a pair of scissors": one object)
     t = re.sub(r"\ba (?:pair|couple) of\b(?! (?:scissors|pliers|tongs|tweezers|glasses|shears|goggles|pincers|snips|cutters)\b)", "two", t)
     t = re.sub(r"\ba trio of\b", "three", t)
