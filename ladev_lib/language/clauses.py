@@ -198,10 +198,22 @@ class ClauseReader:
         self.scene = scene
         self._last_head: str | None = None
         """The head noun of the last object phrase read, for "the pink *one*"."""
+        self._gripper_said = False
+        """Whether the clause before named the gripper ("open the gripper, close *it* around the can")."""
 
     def read(self, clause: Clause) -> Clause:
         self._structure(clause)
+        gripper_it = (
+            self._gripper_said and clause.verb is not None and clause.verb.lemma in GRIP_VERBS
+            and len(clause.bare) == 1 and clause.bare[0].pronoun and clause.bare[0].text == "it"
+        )
+        if gripper_it:
+            clause.bare.clear()
+            clause.bare_places.append("gripper")  # "close it around the ribbon": 'it' is the gripper
         clause.kind = self._kind(clause)
+        self._gripper_said = any(p.split()[-1] in GRIPPER_WORDS for p in clause.bare_places) or (
+            self._gripper_said and not clause.bare
+        )
         return clause
 
     def _structure(self, c: Clause) -> None:
@@ -480,7 +492,7 @@ _FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
 """Head nouns that name a part of the object before them ("the cabinet top")."""
 _NOT_NOUNS = frozenset(
-    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing", "itself", "again", "too", "also", "first", "instead", "already", "anyway", "though", "so", "oh", "ok", "okay", "well", "alright", "hey", "hi", "yes", "yeah", "hmm", "um", "uh", "robot", "manipulator", "agent", "policy", "end", "episode", "trial", "beginning", "start", "success", "aim", "purpose"]
+    ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing", "itself", "again", "too", "also", "first", "instead", "already", "anyway", "though", "so", "oh", "ok", "okay", "well", "alright", "hey", "hi", "yes", "yeah", "hmm", "um", "uh", "robot", "manipulator", "agent", "policy", "end", "episode", "trial", "beginning", "start", "success", "aim", "purpose", "percent", "degree", "degrees", "brightness", "lighting", "camera"]
 )
 """Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
 

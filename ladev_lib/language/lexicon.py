@@ -277,7 +277,7 @@ QUANTIFIERS = frozenset(
 )
 NEGATIONS = frozenset(
     {"not", "never", "avoid", "avoiding", "refrain", "refraining", "no", "without", "nor", "nobody",
-     "neither", "forget", "stop", "stopping", "quit", "cease"}
+     "neither", "forget", "stop", "stopping", "quit", "cease", "except"}
 )
 COPULAS = frozenset(["is", "are", "be", "being", "been", "was", "were", "am"])
 AUXILIARIES = frozenset(["do", "does", "did"])
@@ -391,5 +391,6 @@ NOISE_PHRASES: tuple[tuple[str, ...], ...] = (
     ("do", "me", "a", "favor", "and"),
     ("do", "me", "a", "favour", "and"),
     ("in", "front", "of", "you"),
+    ("uh",), ("um",), ("umm",), ("erm",), ("er",), ("hmm",), ("uhh",),
 )
 """Fixed phrases removed before tagging (they would otherwise look like verbs or relations)."""

@@ -204,7 +204,7 @@ def _elided_objects(clauses: list[Clause]) -> None:
             and not c.bare
             and not c.negation
             and (c.intro or "") in _CHAINING
-            and any(g.refs for g in c.placements())
+            and any(g.refs for g in c.governed if g.relation in PLACEMENT or g.phrase in _OVER)
         ):
             c.bare.append(Ref("it", pronoun=True))
             c.kind = "place"
@@ -235,6 +235,11 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
     fronted_a = a.kind == "place" and not a.bare() and all(c.verb is None for c in a.clauses)
     fronted_b = b.kind == "place" and not b.bare() and all(c.verb is None for c in b.clauses)
     if fronted_a and b.kind == "place_nodest":
+        return _Action("place", both)
+    if fronted_a and b.kind == "place" and any(g.refs and g.relation in PLACEMENT for g in b.governed()):
+        for c in a.clauses:
+            for g in c.governed:
+                g.qualifier = "context"  # "on the counter, move the jar next to the bowl": where it all happens
         return _Action("place", both)
     if a.kind == "place_nodest" and fronted_b:
         return _Action("place", both)

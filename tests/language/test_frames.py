@@ -162,3 +162,24 @@ def test_more_general_forms(text, expected):
 def test_two_phrases_one_catalog_name_are_two_objects():
     frame = read_instruction("put the pan and the lid in the sink")
     assert not frame.ok and frame.reason is not None and "more than one object" in frame.reason
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # "it" after the gripper is named is the gripper; moved above, lowered inside, let go
+        ("open the gripper, close it around the cork, raise it, move above the jar, lower it inside and open the gripper",
+         ("put_in", "cork", "jar")),
+        # a fronted place is where it all happens when the task has its own destination
+        ("in the kitchen, move the kettle next to the toaster", ("move_near", "kettle", "toaster")),
+        # hesitations are no words of the task
+        ("um could you uh grab the whisk", ("pick_up", "whisk", None)),
+    ],
+)
+def test_forms_from_the_fifth_held_out_round(text, expected):
+    test_general_forms_over_free_phrases(text, expected)
+
+
+def test_except_negates_what_follows():
+    frame = read_instruction("put the kettle anywhere except on the stove")
+    assert frame.negated or not frame.ok

@@ -575,3 +575,45 @@ def test_key_value_snippets_with_braces_and_direction_keys(vocab):
     assert _light(out) == pytest.approx(-0.2)
     translation, _ = _camera(out)
     assert translation == pytest.approx([0.0, 0.0, 0.03])
+
+
+# -- forms added after the fifth blind held-out set (written for these tests) ---------------------
+
+
+@pytest.mark.parametrize(
+    "text, objects, task",
+    [
+        ("A plum, a pear and a bowl. The robot picks up the plum - sorry, the pear.", {"plum": 1, "pear": 1, "bowl": 1},
+         ("pick_up", "pear", None)),
+        ("peach, lemon, mug. Robot puts the peach in the mug - actually, use the lemon, not the peach.",
+         {"peach": 1, "lemon": 1, "mug": 1}, ("put_in", "lemon", "mug")),
+        ("A fork, a knife and a plate. Task: put the fork on the plate. Hmm, actually put the knife on it instead.",
+         {"fork": 1, "knife": 1, "plate": 1}, ("put_on", "knife", "plate")),
+        ("two fruits, an apple and a pear, and a bowl. Robot: put the pear in the bowl.",
+         {"apple": 1, "pear": 1, "bowl": 1}, ("put_in", "pear", "bowl")),
+        ("ok put a plum and a plate on the table then the robot puts the plum on the plate lights ten percent darker",
+         {"plum": 1, "plate": 1}, ("put_on", "plum", "plate")),
+    ],
+)
+def test_task_corrections_labels_and_dictation(vocab, text, objects, task):
+    test_the_stated_task_and_the_described_objects(vocab, text, objects, task)
+
+
+def test_numbered_lists_comparatives_and_unset_camera(vocab):
+    out = read_description("1. pear\n2. mug\n3. task: pick up the pear\n4. lights 10% dimmer\n5. camera.rotate = none", vocab)
+    assert _named(out) == Counter({"pear": 1, "mug": 1}), out
+    assert _light(out) == pytest.approx(-0.1) and _camera(out) is None
+    out = read_description("a pear. the light make more dark by 20 percent", vocab, task="pick_up")
+    assert _light(out) == pytest.approx(-0.2)
+
+
+@pytest.mark.parametrize(
+    "text, named",
+    [
+        ("Objects: a plum, a towel and a fork. Don't include the fork after all.", {"plum": 1, "towel": 1}),
+        ("a pear, a toy boat and one random object", {"pear": 1, "toy boat": 1}),
+    ],
+)
+def test_take_backs_and_category_words_as_modifiers(vocab, text, named):
+    out = read_description(text, vocab, task="pick_up")
+    assert _named(out) == Counter(named), out

@@ -80,6 +80,10 @@ def correct_relations(text: str) -> str:
         for m in _MARKER.finditer(low):
             new = re.match(rf"\s*({_RELATION})\s+(?:the|a|an|that|this)\s", low[m.end():])
             if new is None:
+                swapped = _corrected_noun_phrase(out, low, m)
+                if swapped is not None:
+                    out = swapped
+                    break
                 continue
             starts = [c.end() for c in _CLAUSE_START.finditer(low, 0, m.start())]
             start = starts[-1] if starts else 0
@@ -92,6 +96,31 @@ def correct_relations(text: str) -> str:
         else:
             return out
     return out
+
+
+_NP = r"(?:the|a|an)\s+(?:[a-z0-9']+\s+){0,3}?[a-z0-9']+"
+
+
+def _corrected_noun_phrase(out: str, low: str, m: re.Match[str]) -> str | None:
+    """ "the robot picks up the spoon - sorry, the banana", "... the lemon - actually, use the golf
+    ball, not the lemon": the corrected noun phrase replaces the one it names (or the last one)."""
+    new = re.match(rf"\s*(?:use\s+|take\s+|it should be\s+)?(?P<np>{_NP})\s*(?:,\s*not\s+(?P<old>{_NP}))?\s*(?=$|[.;!?\n]|instead\b)", low[m.end():])
+    if new is None:
+        return None
+    starts = [c.end() for c in _CLAUSE_START.finditer(low, 0, m.start())]
+    start = starts[-1] if starts else 0
+    clause = low[start : m.start()]
+    if not re.search(r"\b(?:pick|put|place|move|set|lift|grab|drop|bring|stack|picks|puts|places|moves|sets|lifts|grabs)\b", clause):
+        return None  # only inside a task statement; object lists are apply_corrections' business
+    said = list(re.finditer(rf"\b{_NP}", clause))
+    if new.group("old"):
+        said = [s for s in said if s.group(0) == new.group("old")]
+    if not said:
+        return None
+    old = said[-1]
+    rest = out[m.end() + new.end():]
+    rest = re.sub(r"^\s*instead\b", "", rest)
+    return out[: start + old.start()] + new.group("np") + out[start + old.end() : m.start()] + rest
 
 
 def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], list[str]]:
@@ -168,8 +197,8 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         return " "
 
     out = re.sub(
-        rf"\b(?:but\s+)?(?:not|no)\s+(?:a|an|the|that)?\s*({names})\s+"
-        r"(?:after all|anymore|any more|on second thought|now|either)\b",
+        rf"\b(?:but\s+)?(?:not|no|dont (?:include|add|put|use|want|need)|do not (?:include|add|put|use|want|need))\s+"
+        rf"(?:a|an|the|that)?\s*({names})\s+(?:after all|anymore|any more|on second thought|now|either)\b",
         taken_back, out,
     )
     out = re.sub(rf"{negation}(?:a|an|the|any)?\s*({names})\s*,\s*(?:but\s+)?(?:a|an)\s+", instead, out)

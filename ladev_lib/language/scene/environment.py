@@ -150,6 +150,8 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
     for part in re.split(r"\band\b|,|\bthen\b|\bbut\b|\bwhile\b|\bwhilst\b|\s\+\s", text):
         if re.search(r"\b(?:dont|do not|not|never|without|no)\s+(?:\w+\s+)?(?:rotat|tilt|pan|roll|yaw|pitch|turn|mov|shift|translat)", part):
             continue  # "don't rotate it"
+        if re.search(r"[:=]\s*(?:none|null|no|0|false|unchanged|default)\s*$", part.strip()):
+            continue  # "camera.rotate = none"
         t, r, ok = camera_motion(part)
         if ok:
             translation = [a + b for a, b in zip(translation, t, strict=True)]

@@ -426,7 +426,13 @@ class _Reader:
                     continue  # "a fruit test", "a tool demo": the category names another noun's kind
                 qty = quantity(m.group(0)[: m.start("cat") - m.start()])
                 found.extend(_ObjectOp(cat) for _ in range(qty))
-            text_wo_names = self.vocab.category_pattern.sub(" @n@ ", text_wo_names)
+            def category_used(m: re.Match[str], source: str = text_wo_names) -> str:
+                after = re.match(r"\s+([a-z]+)", source[m.end():])
+                if after is not None and after.group(1) not in STOP_PREPOSITIONS | _AFTER_NOUN | NON_OBJECT_NOUNS:
+                    return m.group(0)  # "a toy car": the category word is the unknown object's modifier
+                return " @n@ "
+
+            text_wo_names = self.vocab.category_pattern.sub(category_used, text_wo_names)
         if not found and self._listy:
             unknown = unknown_phrase(text_wo_names)
             if unknown:

@@ -43,7 +43,7 @@ _MODAL = (
 )
 LABEL = re.compile(
     r"(?:^|(?<=[\s(\[{|;,.:•*-]))(?:the\s+)?(?:main\s+|actual\s+|robot(?:'s)?\s+|its\s+)?"
-    r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt|aim|purpose)"
+    r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt|aim|purpose|robot(?=\s*:))"
     r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
     r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+(?:will|should|would|shall|must)\s+be\s+(?:to\s+)?|"
     r"\s+(?=" + _VERB + r"\b)|\s+(?=(?:pick_up|move_near|put_on|put_in)\s*\())",
@@ -142,7 +142,8 @@ _INTRODUCES = re.compile(r"\b(?:a|an|some|\d+|one|two|three|four|five|six|seven)
 _CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
 _NEW_CLAUSE = re.compile(
     r",?\s*(?:and\s+|but\s+|while\s+|whereas\s+|when\s+|with\s+|plus\s+)?(?:there|it|they|a|an|the|\d+)\b"
-    r"|,\s*[a-z][a-z ]{1,20}:",  # ", light: darker 0.35": the next field of a key-value line
+    r"|,\s*[a-z][a-z ]{1,20}:"  # ", light: darker 0.35": the next field of a key-value line
+    r"|\s+(?:the\s+)?(?:lights?|lighting|brightness|camera|cam)\b",  # dictated text: the setup goes on
     re.IGNORECASE
 )
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
@@ -195,7 +196,11 @@ def _is_place(phrase: NounPhrase | None) -> bool:
 def _cuts(candidate: str) -> list[tuple[str, int]]:
     """The candidate, then shorter versions cut at clause boundaries (first boundary last), with their lengths."""
     out = [(candidate, len(candidate))]
-    for m in reversed(list(re.finditer(r",|\s+(?:and|but|while|whereas|when|so that|so|then|with|because)\s+|\(|\)", candidate))):
+    for m in reversed(list(re.finditer(
+        r",|\s+(?:and|but|while|whereas|when|so that|so|then|with|because)\s+|\(|\)"
+        r"|\s+(?=(?:the\s+)?(?:lights?|lighting|brightness|camera|cam)\s)",  # dictated text without commas
+        candidate,
+    ))):
         head = candidate[: m.start()]
         if head.strip() and head.strip() not in [c.strip() for c, _ in out]:
             out.append((head, m.start()))
@@ -444,6 +449,9 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             said = re.sub(rf"^\s*({_VERB})\s+it\b", rf"\1 the {found[-1].frame.object.text}", seg[retracted.end():],
                           flags=re.IGNORECASE)
             said = re.sub(r"\s*\binstead\b\s*", " ", said).strip()
+            earlier = found[-1].frame.destination
+            if earlier is not None:  # "... actually put the strawberry in it instead": 'it' is the destination said before
+                said = re.sub(rf"\b({_RELATION_WORD})\s+it\b", rf"\1 the {earlier.text}", said, count=1, flags=re.IGNORECASE)
             frame = _read(said, reader)
             if frame is not None:
                 found.append(TaskStatement(s, e, said, frame, 3))

@@ -28,7 +28,8 @@ SCENE_NOUNS = {
 }
 FILLERS = {
     "a", "an", "the", "some", "any", "there", "is", "are", "be", "being", "was", "were", "with",
-    "and", "or", "plus", "also", "too", "as", "well", "of", "them", "which", "these", "those", "that",
+    "anyway", "anyways", "also", "so", "okay", "ok", "well", "fun", "basically", "honestly",
+    "and", "or", "plus", "too", "as", "of", "them", "which", "these", "those", "that",
     "this", "it", "its", "has", "have", "having", "contains", "contain", "containing", "holds", "hold",
     "holding", "includes", "include", "including", "included", "featuring", "features", "feature",
     "consisting", "consists", "made", "up", "let", "lets", "create", "make", "generate", "build",
@@ -48,12 +49,12 @@ FILLERS = {
     "gripper", "arm", "it's", "theres", "there's", "scene's", "they", "their", "no",
     "not", "nothing", "none", "specific", "specified", "unspecified", "given", "mentioned",
     "besides", "beside", "apart", "except", "alongside", "together", "respectively", "whose",
-    "where", "who", "what", "while", "but", "so", "such", "e.g", "eg", "ie", "etc",
+    "where", "who", "what", "while", "but", "such", "e.g", "eg", "ie", "etc",
     "sim", "simulation", "simulated", "test", "tabletop", "task", "instruction",
     "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
-    "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "okay", "ok", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
-    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "honestly", "thank",
+    "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
+    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank",
     "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
 NON_OBJECT_NOUNS = frozenset({
@@ -196,6 +197,11 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("’", "'").replace("‘", "'").replace("“", '"').replace("”", '"')
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
+    t = re.sub(r"(?m)^\s*\d{1,2}[.)]\s+(?=[a-z])", "", t)  # "5. lights 10% dimmer": a list's numbering
+    t = re.sub(r"\b(?:just )?for fun\b|\bas (?:a )?(?:joke|gag)\b", " ", t)
+    # "more dark", "less bright": comparatives said with more / less
+    t = re.sub(r"\bmore (?:dark|dim)\b|\bless (?:bright|light)\b", " darker ", t)
+    t = re.sub(r"\bmore (?:bright|light|strong)\b|\bless (?:dark|dim)\b", " brighter ", t)
     t = re.sub(r"\s*\}+\s*,?", " ; ", t.replace("{", " "))  # "{objects: [...], light: ...}": braces as separators
     # "a pair of lemons" (not "a pair of scissors": one object)
     t = re.sub(r"\ba (?:pair|couple) of\b(?! (?:scissors|pliers|tongs|tweezers|glasses|shears|goggles|pincers|snips|cutters)\b)", "two", t)
