@@ -71,6 +71,16 @@ SETS: dict[str, tuple[Path, str]] = {
         "fifth open-vocabulary held-out set (bathroom, lab bench, garden shed, dining table, LIBERO-like "
         "kitchen, toys), written blind, scored once at c1f5114",
     ),
+    "open_vocab_holdout6": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout6.csv",
+        "sixth open-vocabulary held-out set (laundry, pharmacy, classroom, kitchen, LIBERO-like, SimplerEnv-like; "
+        "35 with scene_objects), written blind, scored once at ea10124",
+    ),
+    "open_vocab_holdout7": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout7.csv",
+        "seventh open-vocabulary held-out set (hospital tray, craft table, bakery, mechanic's bench, LIBERO-like, "
+        "SimplerEnv-like; terse, rambling, dictated, non-native, LLM-verbose), written blind, scored once at 755df16",
+    ),
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 FIRST_SCORES: dict[str, tuple[float, float, str]] = {
@@ -80,6 +90,8 @@ FIRST_SCORES: dict[str, tuple[float, float, str]] = {
     "open_vocab_holdout3": (0.933, 0.824, "blind"),
     "open_vocab_holdout4": (0.939, 0.920, "blind"),
     "open_vocab_holdout5": (1.000, 0.860, "blind"),
+    "open_vocab_holdout6": (0.957, 0.818, "blind"),
+    "open_vocab_holdout7": (0.981, 0.927, "blind"),
 }
 """First scores of the held-out sets: the held-out figures. Every later figure of a set is a
 development figure (its errors were looked at and general fixes followed)."""
@@ -138,6 +150,23 @@ NOTES = (
     "a size word fits only a scene object of that size; a source and destination the catalog reads "
     "as one object but the scene grounds on two are two objects) removed the 2 scene-grounding false "
     "invalids.",
+    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout7`, 90-100 pairs each): each set was written "
+    "by a helper that read neither the reader's code nor its tests nor the earlier sets, only the labelling "
+    "rules; it was scored once, at the commit named, before anything was changed for it (the 'first score' "
+    "column); its errors were then read and general fixes made, so its later figure is a development "
+    "figure. First scores, in order: 0.939 / 0.920, 1.000 / 0.860, 0.957 / 0.818, 0.981 / 0.927 "
+    "(precision / recall; the targets are 0.97 / 0.90, met by the last round only). What the rounds "
+    "taught (each a general rule with tests in our own words): step-by-step pick-ups and placements "
+    "spelled as gripper motions (closing the gripper on a thing grasps it, lifting it off where it lies is "
+    "a pick, moved above a thing and lowered inside / released onto it is put in / on); pseudo-clefts and "
+    "stranded-preposition clefts; \"cover X with Y\"; \"what I'd like is for X to ...\"; result and "
+    "manner clauses that restate the end state; \"the blue one\"; compound nouns ending in a verb form; "
+    "measure nouns (\"a stick of chalk\"); a name the catalog reads as several objects stays free text "
+    "that never equals one of them; two phrases the catalog reads as one object but with different head "
+    "nouns are two objects (the lid and the pan); plain scene names with a phrase's head noun make a bare "
+    "noun ambiguous; a destination is never the object moved; WordNet's noun hierarchy grounds generic "
+    "words on plain names (\"the tool\" for a trowel, \"the cover\" for a lid, \"the drink\" for a "
+    "milk carton).",
     "No scene given: a phrase grounds on the catalog, so \"plate\" and \"dinner plate\" (two catalog "
     "plates) stay different objects; with `scene_objects` (ids or names) \"dinner plate\" is the scene's "
     "plate.",
@@ -277,6 +306,15 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
         ROOT / "tests/data/scene_descriptions_holdout3.jsonl",
         "third held-out set (40), written blind, scored once at c1f5114",
     ),
+    "scene_descriptions_holdout4": (
+        ROOT / "tests/data/scene_descriptions_holdout4.jsonl",
+        "fourth held-out set (50), written blind, scored once at ea10124",
+    ),
+    "scene_descriptions_holdout5": (
+        ROOT / "tests/data/scene_descriptions_holdout5.jsonl",
+        "fifth held-out set (50; hurried, careful, non-native, config-pasted, dictated, rambling writers), "
+        "written blind, scored once at 755df16",
+    ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
     names = ("n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility")
@@ -298,6 +336,12 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
     ],
     "scene_descriptions_holdout3": [
         _figures("first (blind, c1f5114)", 0.600, (0.750, 0.925, 0.850, 0.925, 0.975, 0.975, 0.925, 0.975)),
+    ],
+    "scene_descriptions_holdout4": [
+        _figures("first (blind, ea10124)", 0.700, (0.940, 0.960, 0.860, 0.960, 0.900, 0.960, 0.960, 0.980)),
+    ],
+    "scene_descriptions_holdout5": [
+        _figures("first (blind, 755df16)", 0.740, (0.960, 1.000, 0.900, 0.940, 0.980, 0.980, 0.940, 1.000)),
     ],
 }
 SCENE_NOTES = (
@@ -322,16 +366,32 @@ SCENE_NOTES = (
     "coordinates read from a description move to the nearest clear point when their points collide (the "
     "dev README: such coordinates state no frame), with a note, and fixed objects turn together to clear "
     "each other.",
-    "Dev rows left (4): dv116 and dv139, tasks the compiler's fit rule rejects (a 6.7 cm ball in a 7.2 cm "
-    "opening, a 6.7 x 10 cm pear in a 6.7 cm opening; the rule keeps 5 mm of play, the set calls them "
-    "feasible); dv032, an iPhone reported as 'iphone' where the set's convention names it 'smartphone' (no "
-    "brand-to-generic table for objects outside the catalog); dv114, one towel mentioned twice with \"a\" "
-    "(\"has a towel on it ... to match: a towel on the left\") read as two.",
-    "Held-out rows left (5), causes not fixed so that the set stays held out: a bare `+ random` command line "
-    "is not a random object; \"add random objects so that there are five in all\" states no total the "
-    "reader knows; \"..., that's what I want the robot to do\" is not read as a task tag; a correction "
-    "inside dashes (\"a pear - scratch the pear, make it a peach - everything else random\") loses the "
-    "random fill; \"but not the knife after all\" does not take the knife back.",
+    "Dev rows left (2): dv032, an iPhone reported as 'iphone' where the set's convention names it "
+    "'smartphone' (no brand-to-generic table for objects outside the catalog); dv114, one towel mentioned "
+    "twice with \"a\" (\"has a towel on it ... to match: a towel on the left\") read as two. dv116 and dv139 "
+    "(a ball / a pear the strict fit rule kept out of a cup) pass since a task a person names is checked as "
+    "a person would place it (thinner walls, no clearance, leaning allowed; the episode's solvability "
+    "check proves the scene).",
+    "The first held-out set's five failures (a bare `+ random` line, \"so that there are five in all\", "
+    "\"that's what I want the robot to do\", a correction inside dashes losing the random fill, \"but not "
+    "the knife after all\") were fixed by general rules after the blind rounds below began.",
+    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout5`, 40-50 descriptions each): "
+    "each set was written by a helper that read only the dev README's conventions (not the reader's code, "
+    "tests or the other sets) and scored once at the commit named before anything changed for it; its "
+    "errors were then read and general fixes made, so its current figure is a development figure. First "
+    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740 (target 0.95: not met). The rounds' lessons, "
+    "each a general rule with tests in our own words: tasks stated as wishes (\"I need the X on the Y\"), "
+    "aims and end states (\"the aim is for the manipulator to ...\", \"success means ...\", \"at the end "
+    "of the episode ...\"), end-state sentences (\"the carrot goes on the red plate\"), calls and arrows "
+    "(`put_on(a, b)`, `a -> near b`), retractions (\"hmm, no, put it in the cup instead\") and corrected "
+    "relations or noun phrases inside the task statement; commands whose objects only the scene resolves; "
+    "settings said with placing verbs (\"drop the brightness\") are no task; groups and counts (\"a pair "
+    "of\", \"Nx\", bare adjective members, a count that starts a list, another kind of the same noun); "
+    "one object for another (\"instead of the bowl use the basket\", \"swap X for Y\", \"make that the red "
+    "plate\" replacing only the plate); unknown objects named again by their head noun, lamps and category "
+    "words as modifiers of unknown objects; lighting fractions, factors and corrected amounts; camera verbs "
+    "that carry their direction (lift, dolly), several motions in one sentence, key-value and numbered "
+    "lists, dictated text without punctuation.",
 )
 
 
