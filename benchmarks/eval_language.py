@@ -81,6 +81,11 @@ SETS: dict[str, tuple[Path, str]] = {
         "seventh open-vocabulary held-out set (hospital tray, craft table, bakery, mechanic's bench, LIBERO-like, "
         "SimplerEnv-like; terse, rambling, dictated, non-native, LLM-verbose), written blind, scored once at 755df16",
     ),
+    "open_vocab_holdout8": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout8.csv",
+        "eighth open-vocabulary held-out set (recycling, nursery, picnic, laboratory, sewing, LIBERO-like, "
+        "SimplerEnv-like), written blind, scored once at 2130271",
+    ),
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 FIRST_SCORES: dict[str, tuple[float, float, str]] = {
@@ -92,6 +97,7 @@ FIRST_SCORES: dict[str, tuple[float, float, str]] = {
     "open_vocab_holdout5": (1.000, 0.860, "blind"),
     "open_vocab_holdout6": (0.957, 0.818, "blind"),
     "open_vocab_holdout7": (0.981, 0.927, "blind"),
+    "open_vocab_holdout8": (1.000, 0.927, "blind"),
 }
 """First scores of the held-out sets: the held-out figures. Every later figure of a set is a
 development figure (its errors were looked at and general fixes followed)."""
@@ -150,12 +156,12 @@ NOTES = (
     "a size word fits only a scene object of that size; a source and destination the catalog reads "
     "as one object but the scene grounds on two are two objects) removed the 2 scene-grounding false "
     "invalids.",
-    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout7`, 90-100 pairs each): each set was written "
+    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout8`, 90-100 pairs each): each set was written "
     "by a helper that read neither the reader's code nor its tests nor the earlier sets, only the labelling "
     "rules; it was scored once, at the commit named, before anything was changed for it (the 'first score' "
     "column); its errors were then read and general fixes made, so its later figure is a development "
-    "figure. First scores, in order: 0.939 / 0.920, 1.000 / 0.860, 0.957 / 0.818, 0.981 / 0.927 "
-    "(precision / recall; the targets are 0.97 / 0.90, met by the last round only). What the rounds "
+    "figure. First scores, in order: 0.939 / 0.920, 1.000 / 0.860, 0.957 / 0.818, 0.981 / 0.927, "
+    "1.000 / 0.927 (precision / recall; the targets are 0.97 / 0.90, met by the last two rounds). What the rounds "
     "taught (each a general rule with tests in our own words): step-by-step pick-ups and placements "
     "spelled as gripper motions (closing the gripper on a thing grasps it, lifting it off where it lies is "
     "a pick, moved above a thing and lowered inside / released onto it is put in / on); pseudo-clefts and "
@@ -315,6 +321,11 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
         "fifth held-out set (50; hurried, careful, non-native, config-pasted, dictated, rambling writers), "
         "written blind, scored once at 755df16",
     ),
+    "scene_descriptions_holdout6": (
+        ROOT / "tests/data/scene_descriptions_holdout6.jsonl",
+        "sixth held-out set (60; spec writers, students, non-native, config snippets, dictation, rambling, "
+        "minimal notes, reordered), written blind, scored once at 2130271",
+    ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
     names = ("n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility")
@@ -342,6 +353,9 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
     ],
     "scene_descriptions_holdout5": [
         _figures("first (blind, 755df16)", 0.740, (0.960, 1.000, 0.900, 0.940, 0.980, 0.980, 0.940, 1.000)),
+    ],
+    "scene_descriptions_holdout6": [
+        _figures("first (blind, 2130271)", 0.633, (0.767, 0.967, 0.850, 0.917, 0.933, 0.983, 0.967, 0.983)),
     ],
 }
 SCENE_NOTES = (
@@ -375,11 +389,11 @@ SCENE_NOTES = (
     "The first held-out set's five failures (a bare `+ random` line, \"so that there are five in all\", "
     "\"that's what I want the robot to do\", a correction inside dashes losing the random fill, \"but not "
     "the knife after all\") were fixed by general rules after the blind rounds below began.",
-    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout5`, 40-50 descriptions each): "
+    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout6`, 40-60 descriptions each): "
     "each set was written by a helper that read only the dev README's conventions (not the reader's code, "
     "tests or the other sets) and scored once at the commit named before anything changed for it; its "
     "errors were then read and general fixes made, so its current figure is a development figure. First "
-    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740 (target 0.95: not met). The rounds' lessons, "
+    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633 (target 0.95: not met). The rounds' lessons, "
     "each a general rule with tests in our own words: tasks stated as wishes (\"I need the X on the Y\"), "
     "aims and end states (\"the aim is for the manipulator to ...\", \"success means ...\", \"at the end "
     "of the episode ...\"), end-state sentences (\"the carrot goes on the red plate\"), calls and arrows "

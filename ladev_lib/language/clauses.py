@@ -224,12 +224,14 @@ class ClauseReader:
         before: Token | None = None
         last: str | None = None  # what the previous element was: "bare" | "governed" | None
 
-        def close() -> None:
+        def close(ahead: Token | None = None) -> None:
             nonlocal phrase, last
             if phrase:
                 # a free noun phrase needs a noun-phrase position: a determiner, or right after
-                # a verb, a particle or a relation word ("put wine bottle on rack")
+                # a verb, a particle or a relation word ("put wine bottle on rack"), or opening a
+                # verbless clause before a relation word ("test tube into the rack, please")
                 slot = before is not None and (before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ",")
+                slot = slot or (before is None and ahead is not None and ahead.kind == "REL" and not verbs)
                 refs, places = self._refs_of(phrase, free_ok=slot or any(t.kind in ("DET", "QUANT") for t in phrase))
                 if gov is not None:
                     gov.refs.extend(refs)
@@ -255,7 +257,7 @@ class ClauseReader:
             if tok.kind in ("OBJ", "PRON", "DET", "QUANT", "WORD"):
                 phrase.append(tok)
                 continue
-            close()
+            close(tok)
             if tok.kind not in ("ADV",):
                 before = tok
             if tok.kind == "REL":

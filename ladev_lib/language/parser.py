@@ -262,9 +262,17 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
         return _Action("place", both)  # "move it above the board, lower it ...": a step of setting it down there
     if a.kind == "place" and b.kind == "place" and _over_then_onto(a, b):
         return _Action("place", both)  # "move it above the board ... release it onto the board"
-    if a.kind == "place" and b.kind == "place" and all((c.intro or "") == "result" for c in b.clauses):
+    rests_there = b.kind == "place_nodest" and all(
+        set(c.bare_places) & _SAME_PLACE or any(t.text in ("there", "here") for t in c.tokens) for c in b.clauses
+    )
+    if a.kind == "place" and (b.kind == "place" or rests_there) and all((c.intro or "") == "result" for c in b.clauses):
         ends = [{r.object_id for g in act.governed() if g.relation in PLACEMENT for r in g.refs} for act in (a, b)]
-        if ends[0] and ends[0] == ends[1]:
+        there = not ends[1] and all(set(g.places) <= _SAME_PLACE for g in b.governed() if g.relation in PLACEMENT)
+        if ends[0] and (ends[0] == ends[1] or there):
+            for c in b.clauses:
+                for g in c.governed:
+                    if not g.refs:
+                        g.qualifier = "completes"  # "... so that it rests there"
             return _Action("place", both)  # "... release it so that it rests inside the pot": the end state again
     leaves = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma == "leave"
     if a.kind == "place" and leaves:

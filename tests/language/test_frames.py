@@ -183,3 +183,16 @@ def test_forms_from_the_fifth_held_out_round(text, expected):
 def test_except_negates_what_follows():
     frame = read_instruction("put the kettle anywhere except on the stove")
     assert frame.negated or not frame.ok
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # a verbless command whose nouns are no catalog names
+        ("cork into the bottle, please", ("put_in", "cork", "bottle")),
+        # an end state that only restates where the object is left
+        ("set the vase on the shelf, making sure that it stays there", ("put_on", "vase", "shelf")),
+    ],
+)
+def test_forms_from_the_sixth_held_out_round(text, expected):
+    test_general_forms_over_free_phrases(text, expected)

@@ -33,7 +33,8 @@ _MARKER_WORDS = (
 )
 _RESTATE = (
     r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|"
-    r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be)\b[\s,:]*)"
+    r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be|"
+    r"thats too (?:much|little|bright|dark|far)(?:[\s,]+(?:go with|make it|use|lets say))?)\b[\s,:]*)"
 )
 _MARKER = re.compile(
     r"\s*(?:-+|—|–|,|;|\(|\.\.\.)\s*"

@@ -69,6 +69,8 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     text = re.sub(r"\b(\d) quarters\b", lambda m: f" {int(m.group(1)) * 25}% ", text)
     text = re.sub(r"\b(\d) tenths?\b", lambda m: f" {int(m.group(1)) * 10}% ", text)
     text = re.sub(r"\b(\d) fifths\b", lambda m: f" {int(m.group(1)) * 20}% ", text)
+    # "three quarters of what it is now": a level of the current lighting
+    text = re.sub(r"\bof (?:what it is now|what it is|the current(?: level| lighting| light)?|current|now)\b", " of normal ", text)
     text = re.sub(r"\b(\d) thirds\b", lambda m: f" {round(int(m.group(1)) * 100 / 3)}% ", text)
     text = re.sub(r"\b(?:a )?tenth\b", " 10% ", text)
     # "at 60% of default", "dim to 40% of normal", "85% brightness": a level, not a change

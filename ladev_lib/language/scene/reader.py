@@ -218,7 +218,10 @@ class _Reader:
             return "objects"
         if previous == "camera" and MOTION.search(clause):
             return "camera"
-        if previous == "lighting" and (DARKER.search(clause) or BRIGHTER.search(clause) or re.search(NUM, clause)):
+        if previous == "lighting" and (
+            DARKER.search(clause) or BRIGHTER.search(clause) or re.search(NUM, clause)
+            or re.search(r"\b(?:double|doubled|twice|triple|halve|halved|half)\b", clause)
+        ):
             return "lighting"
         if re.search(r"\bbright(?:ness)?\b|\bdark(?:ness)?\b", clause) and re.search(
             r"\b(?:scene|room|environment|it is|its)\b", clause
@@ -500,9 +503,16 @@ def read_description(
     description states (its statements are not read as objects); ``task``
     (a type alone). Task statements are taken out of the text either way.
     """
-    found = find_task(correct_relations(description or ""), vocab.ids)
-    text, dropped, replaced = apply_corrections(expand_groups(normalize_text(found.rest, vocab), vocab), vocab)
+    found = find_task(correct_relations(spoken_punctuation(description or "")), vocab.ids)
+    normal = normalize_text(found.rest, vocab)
+    text, dropped, replaced = apply_corrections(expand_groups(normal, vocab), vocab)
     protected, slots = protect_coordinates(text)
+    only = next(
+        (m for m in ONLY_THESE.finditer(normal) if not re.search(
+            r"\b(?:camera|cam|view|light|lights|lighting|brightness)\b", _sentence_around(normal, m.start())
+        )),
+        None,
+    )
     task_objects = tuple(
         str(found.task[k]) for k in ("source", "target") if found.task is not None and found.task.get(k)
     )
@@ -567,7 +577,14 @@ def read_description(
             op["position"] = obj.position
         ops.append(op)
     randoms = reading.randoms
-    if reading.total is not None:
+    if reading.total is None and only is not None:
+        # "just those two", "nothing else": the named objects and the task's are all there is
+        task_said = [str(v) for k, v in (out.get("task") or {}).items() if k in ("source", "target") and v]
+        for mention in task_said:
+            if not any(_same_object(vocab, o.mention, mention) for o in named):
+                ops.append({"op": "add_object", "object": mention})
+        randoms = 0
+    elif reading.total is not None:
         randoms = max(reading.total - len(named), 0)
     positions = [p for p in reading.random_positions if p is not None]
     for i in range(randoms):
@@ -579,6 +596,34 @@ def read_description(
     ops.extend(merge_camera(reading.camera))
     out["operations"] = ops
     return out
+
+
+ONLY_THESE = re.compile(
+    r"\b(?:just|only)\s+(?:the|those|these)\s+(?P<n>\d+)?\s*(?:objects?|items?|things?|[a-z]+s)?\b(?!\s+(?:of|on|in|at))"
+    r"|\b(?:and\s+)?nothing else\b|\bno other objects?\b|\bno (?:random|extra|additional) objects?\b"
+)
+"""The scene holds the named objects only ("the scene has just those two fruits", "nothing else")."""
+
+
+def _sentence_around(text: str, pos: int) -> str:
+    start = max(text.rfind(c, 0, pos) for c in ".;\n") + 1
+    ends = [e for e in (text.find(c, pos) for c in ".;\n") if e >= 0]
+    return text[start : min(ends) if ends else len(text)]
+
+
+def _same_object(vocab: Vocabulary, a: str | None, b: str) -> bool:
+    """Two mentions of one object: equal, one catalog id, or one ending the other ("red bull can", "red bull")."""
+    if a is None:
+        return False
+    ida = vocab.name_ids.get(canonical_name(vocab, a))
+    idb = vocab.name_ids.get(canonical_name(vocab, b))
+    return a == b or (ida is not None and ida == idb) or a.startswith(b) or a.endswith(b) or b.endswith(a)
+
+
+def spoken_punctuation(text: str) -> str:
+    """Dictated punctuation as punctuation ("the wooden block goes in the back period the robot ...")."""
+    text = re.sub(r"\s+(?:period|full stop|new line|newline)\b", ".", text, flags=re.IGNORECASE)
+    return re.sub(r"\s+comma\b", ",", text, flags=re.IGNORECASE)
 
 
 def _task_names_described(task: dict[str, Any], reading: _Reading, vocab: Vocabulary) -> None:

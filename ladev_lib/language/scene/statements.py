@@ -46,7 +46,7 @@ LABEL = re.compile(
     r"(?:task|instruction|command|goal|objective|job|mission|assignment|challenge|prompt|aim|purpose|robot(?=\s*:))"
     r"(?:\s+(?:here|for\s+the\s+robot|for\s+the\s+arm|of\s+the\s+robot))?"
     r"\s*(?:[:=(]|-+>|\s+is\s+(?:to\s+|that\s+)?|\s+(?:will|should|would|shall|must)\s+be\s+(?:to\s+)?|"
-    r"\s+(?=" + _VERB + r"\b)|\s+(?=(?:pick_up|move_near|put_on|put_in)\s*\())",
+    r"\s+(?=" + _VERB + r"\b)|\s+(?=(?:pick_up|move_near|put_on|put_in)\s*\())|\s*:\s*(?=\{\s*type\b)",
     re.IGNORECASE,
 )
 AGENT_MODAL = re.compile(
@@ -89,6 +89,12 @@ _RETRACT = re.compile(
     re.IGNORECASE,
 )
 """A statement that takes the one before back ("no, put it in the cup instead")."""
+PASSIVE = re.compile(
+    r"\b(?:must|should|has\s+to|have\s+to|needs?\s+to|is\s+to|are\s+to|will|shall|is\s+supposed\s+to)\s+be\s+"
+    r"(?:put|placed|moved|set|dropped|stacked|picked\s+up|lifted|carried|brought|laid|inserted|transferred|slid)\b",
+    re.IGNORECASE,
+)
+"""A task said in the passive ("the plum should be placed in the bowl")."""
 END_STATE = re.compile(
     r"(?:^|(?<=[\s,;:]))(?:at the end(?: of (?:the|this|each) (?:episode|trial|run|rollout))?|by the end(?: of (?:the|this) "
     r"(?:episode|trial|run))?|in the end|success(?:\s+(?:means|is when|is that|is defined as|=|:))|the end state is(?: that)?|"
@@ -213,13 +219,21 @@ _ARROW = re.compile(
 )
 
 
+_TASK_DICT = re.compile(
+    r"^\s*\{?\s*type\s*[:=]\s*(?P<task>pick_up|move_near|put_on|put_in)\s*,\s*(?:object|source)\s*[:=]\s*(?P<src>[^,{}]+?)"
+    r"\s*(?:,\s*(?:target|destination|container)\s*[:=]\s*(?P<tgt>[^,{}]+?)\s*)?\}?\s*$",
+    re.IGNORECASE,
+)
 _CALL = re.compile(
     r"^\s*(?P<task>pick_up|move_near|put_on|put_in)\s*\(\s*(?P<src>[^,()]+?)\s*(?:,\s*(?P<tgt>[^()]+?)\s*)?\)", re.IGNORECASE
 )
 
 
 def _call(text: str) -> str:
-    """'put_on(banana, red plate)' -> 'put banana on red plate'."""
+    """'put_on(banana, red plate)' / '{type: put_on, object: banana, target: red plate}' -> 'put banana on red plate'."""
+    d = _TASK_DICT.match(text)
+    if d is not None:
+        text = f"{d.group('task')}({d.group('src')}{', ' + d.group('tgt') if d.group('tgt') else ''})"
     m = _CALL.match(text)
     if m is None:
         return text
@@ -364,6 +378,17 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             m = pattern.search(seg)
             if m is not None and (marked is None or m.end() < marked):
                 marked = m.end()
+        passive = PASSIVE.search(seg)
+        if marked is None and passive is not None:
+            said = re.sub(r"\s+by\s+(?:the\s+)?(?:robot|arm|manipulator|gripper|agent)\b", "", seg, flags=re.IGNORECASE)
+            frame = _read(said, reader)
+            if frame is not None:
+                # "Strawberry must be put inside the big blue cup by robot": a passive command
+                found.append(TaskStatement(s, e, said.strip(), frame, 1))
+                continue
+            if _needs_scene(said, reader):
+                found.append(TaskStatement(s, e, _normalise(said.strip()), reader(""), -2))
+                continue
         need = NEED_THE.search(seg)
         if marked is None and need is not None and _read_span(seg[need.start():], reader) is not None:
             marked = need.start()  # "I need the knife near the fork": an end state is the task
@@ -468,7 +493,8 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
                 found.append(TaskStatement(s, e, _normalise(seg[m.end():].strip()), reader(""), -2))
             continue
         if _INDEFINITE.match(after_verb) and (
-            frame.object is None or re.search(rf"\b{re.escape(frame.object.head)}", text[:s], re.IGNORECASE) is None
+            frame.object is None
+            or re.search(rf"\b{re.escape(frame.object.head.rstrip('y'))}", text[:s], re.IGNORECASE) is None
         ):
             continue  # "put a carrot near the plate" sets the scene; "two apples ... put an apple in" is the task
         back = i + 1 < len(spans) and BACK_LABEL.match(text[spans[i + 1][0]:spans[i + 1][1]]) is not None
@@ -504,6 +530,7 @@ def find_task(
     # "put the marble - not the die - on the box", "(not the carrot)": asides that name what is not meant
     text = re.sub(r"\s[—–-]+\s*not\s+(?:the|a|an)\s+[^—–\n.-]+?\s*[—–-]+\s", " ", text, flags=re.IGNORECASE)
     text = re.sub(r"\(\s*not\s+(?:the|a|an)\s+[^)]*\)", " ", text, flags=re.IGNORECASE)
+    text = re.sub(r"\b(wait|no|sorry|hmm+|actually|oops)\s*[—–]+\s*", r"\1, ", text, flags=re.IGNORECASE)
     statements = _statements(text, read, names)
     unreadable = [s for s in statements if s.strength == 0]
     maybe = [s for s in statements if s.strength == -2]

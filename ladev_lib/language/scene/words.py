@@ -198,7 +198,9 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
     t = re.sub(r"(?m)^\s*\d{1,2}[.)]\s+(?=[a-z])", "", t)  # "5. lights 10% dimmer": a list's numbering
-    t = re.sub(r"\b(?:just )?for fun\b|\bas (?:a )?(?:joke|gag)\b", " ", t)
+    t = re.sub(r"\b(?:just )?for (?:fun|clutter)\b|\bas (?:a )?(?:joke|gag|clutter|distractors?)\b", " ", t)
+    t = re.sub(r"\b(?:um+|uh+|erm|er|like)\b(?=\s)", " ", t)  # hesitations ("like three degrees")
+    t = re.sub(r"\ba handful of\b", " some ", t)
     # "more dark", "less bright": comparatives said with more / less
     t = re.sub(r"\bmore (?:dark|dim)\b|\bless (?:bright|light)\b", " darker ", t)
     t = re.sub(r"\bmore (?:bright|light|strong)\b|\bless (?:dark|dim)\b", " brighter ", t)
