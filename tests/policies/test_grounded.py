@@ -178,6 +178,8 @@ def test_a_grounding_by_embedding_is_the_same_whatever_the_last_bits():
     picks = set()
     for jitter in (0.0, 1e-6, -1e-6):
         vectors = {"the doohickey": [1.0, 0.0, 0.0], "gizmo": [0.8, 0.6, 0.0], "widget": [0.8, -0.6, 0.0]}
-        g = Grounder(catalog, _NoisyEmbedder(vectors, "gizmo", jitter), margin=0.0, min_similarity=0.5)
+        # WordNet left out: it knows gizmos and widgets as one kind of gadget (the kind step would
+        # call them ambiguous before the embedding step this test is about is reached)
+        g = Grounder(catalog, _NoisyEmbedder(vectors, "gizmo", jitter), margin=0.0, min_similarity=0.5, nouns=None)
         picks.add(g.ground(NounPhrase("the doohickey", "doohickey", ()), g.scene(["gizmo", "widget"])).object_id)
     assert len(picks) == 1 and None not in picks
