@@ -91,13 +91,20 @@ class Grounder:
         nouns: Nouns | None | Literal["default"] = "default",
     ) -> None:
         self.catalog = catalog or load_catalog()
-        self.nouns = default_nouns() if nouns == "default" else nouns
-        """WordNet's nouns, for what kind of thing a plain name is ("trowel": a tool); None: not used."""
+        self._nouns = nouns
         self.index: NameIndex = name_index(self.catalog)
         self.embedder = embedder
         self.margin = margin
         self.min_similarity = min_similarity
         self._vectors: dict[str, Array] = {}
+
+    @property
+    def nouns(self) -> Nouns | None:
+        """WordNet's nouns, for what kind of thing a plain name is ("trowel": a tool); None: not used.
+        Read on first use (a grounding that never gets past names and head nouns does not load it)."""
+        if self._nouns == "default":
+            self._nouns = default_nouns()
+        return self._nouns
 
     # -- scenes ------------------------------------------------------------------
     def scene(self, entries: Iterable[str]) -> tuple[SceneObject, ...]:

@@ -21,7 +21,6 @@ from ladev_lib.language.scene.environment import (
 )
 from ladev_lib.language.scene.instruction import parse_instruction
 from ladev_lib.language.scene.objects import (
-    ADJECTIVES,
     canonical_name,
     expand_groups,
     find_region,
@@ -660,12 +659,7 @@ def _task_in_scene(statement: str, reading: _Reading, vocab: Vocabulary) -> dict
     ids = [by_name[o.mention] for o in reading.objects if o.mention in by_name]
     if not ids:
         return None
-    # "move the green brick near the pink one": 'one' is the other object's noun
-    statement = statement.lower()
-    named = vocab.name_pattern.search(statement)
-    if named is not None:
-        head = re.sub(rf"^(?:(?:{ADJECTIVES})\s+)+", "", canonical_name(vocab, named.group(0)))
-        statement = re.sub(rf"\b((?:the|a|an)\s+(?:{ADJECTIVES}))\s+one\b", rf"\1 {head}", statement)
+    # "move the green brick near the pink one": the instruction reader gives 'one' the noun before it
     frame = read_instruction(statement, scene_objects=ids)
     if frame.task is None or frame.task == "other" or frame.object is None or not frame.ok:
         return None
