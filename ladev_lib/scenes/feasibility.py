@@ -17,16 +17,31 @@ def _horizontal(obj: CatalogObject) -> tuple[float, float]:
     return (min(x, y), max(x, y))
 
 
+PLACEMENT_TOLERANCE_M = 0.01
+"""How far from the centre of a support a careful placement may land."""
+MAX_OVERHANG = 3.0
+"""A balanced object may be at most this many times as wide as the top it rests on."""
+
+
 def fits_on(source: CatalogObject, target: CatalogObject, strict: bool = True) -> str | None:
-    """None if ``source`` can rest on ``target``, else why not. ``strict`` (random scenes): the
-    target is about as wide as the source; not strict (a task a person names): it may balance
-    on a top at least half its width (a brick stacked on a smaller cube); the episode's
-    solvability check proves it."""
+    """None if ``source`` can rest on ``target``, else why not.
+
+    ``strict`` (random scenes): the target is about as wide as the source. Not
+    strict (a task a person names): the source may balance on a smaller top, as a
+    can stands on a cube: it stays when its centre of mass lands over the top,
+    i.e. when the top's half width covers the placement tolerance, and it may
+    overhang the top by up to ``MAX_OVERHANG`` times the top's width. The
+    episode's solvability check, not this rule, proves the scene.
+    """
     if not target.support:
         return f"{target.display_name!r} cannot hold objects on top"
     s_min, _ = _horizontal(source)
     t_min, _ = _horizontal(target)
-    if t_min < (0.9 if strict else 0.5) * s_min:
+    if strict:
+        too_small = t_min < 0.9 * s_min
+    else:
+        too_small = t_min < 2 * PLACEMENT_TOLERANCE_M or s_min > MAX_OVERHANG * t_min
+    if too_small:
         return (
             f"{target.display_name!r} ({t_min * 100:.1f} cm across) is too small to hold "
             f"{source.display_name!r} ({s_min * 100:.1f} cm across)"

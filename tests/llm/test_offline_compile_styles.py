@@ -166,8 +166,9 @@ CASES = [
          light="darker", camera={"pitch": -1}),
     Case("objects = 4, light = +0.2, cam = 3 cm right", "pick up the apple", count=4, source="apple",
          light="brighter", camera={"y": -1}),
+    # "1 deg roll" is "roll 1" said value first: + is clockwise in the camera's frame, - in the spec's
     Case("Two objects: bowl (front), apple (back). Camera: 2cm down, 1 deg roll.", "put the apple in the bowl",
-         "put_in", count=2, source="apple", target="024_bowl", camera={"z": -1, "roll": 1}),
+         "put_in", count=2, source="apple", target="024_bowl", camera={"z": -1, "roll": -1}),
     Case("lighting intensity 0.7", "pick up the sponge", source="sponge", light="darker"),
     # Signed axis values are the camera's own frame (x right, y forward; yaw + pans right, pitch + tilts up).
     Case("camera: yaw +3 deg, pitch -2 deg", "pick up the orange", source="orange", camera={"yaw": -1, "pitch": 1}),

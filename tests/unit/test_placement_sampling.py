@@ -119,3 +119,17 @@ def test_approximate_coordinates_move_only_as_far_as_needed(catalog):
     assert (placed[0].x, placed[0].y) == (0.0, 0.0)
     moved = math.hypot(placed[1].x - 0.03, placed[1].y)
     assert 0 < moved <= 0.06  # a can is 6.6 cm across plus the gap: a few cm, not anywhere
+
+
+def test_a_named_object_may_balance_on_a_smaller_top_but_not_on_a_sliver(catalog):
+    # random scenes: the top is about as wide as the object; a named task: the object's centre
+    # of mass must land over the top (half its width covers the placement tolerance) and it may
+    # overhang the top by a bounded amount
+    can, cube = catalog.get("coke_can"), catalog.get("green_cube")
+    assert fits_on(can, cube) is not None
+    assert fits_on(can, cube, strict=False) is None
+    sliver = cube.model_copy(update={"size_m": (0.015, 0.015, 0.03)})
+    assert "too small" in fits_on(can, sliver, strict=False)
+    wide = can.model_copy(update={"size_m": (0.12, 0.12, 0.05)})
+    assert "too small" in fits_on(wide, cube, strict=False)
+    assert fits_on(wide, catalog.get("towel"), strict=False) is None

@@ -72,7 +72,7 @@ def correct_relations(text: str) -> str:
     the task is looked for."""
     # "... on the towel. Hmm, no, on the sponge.": a correction that starts a sentence
     out = re.sub(
-        rf"([.!?])\s+((?:hmm+|no+|nope|wait|sorry|actually|oops)\b[,!.]?\s*(?:(?:no+|wait|sorry|actually)\b[,!.]?\s*)*"
+        rf"(\.+|…|[!?])\s+((?:hmm+|no+|nope|wait|sorry|actually|oops)\b[,!.]?\s*(?:(?:no+|wait|sorry|actually)\b[,!.]?\s*)*"
         rf"{_RELATION}\s+(?:the|a|an)\s)",
         r" - \2", text, flags=re.IGNORECASE,
     )
@@ -99,7 +99,8 @@ def correct_relations(text: str) -> str:
     return out
 
 
-_NP = r"(?:the|a|an)\s+(?:[a-z0-9']+\s+){0,3}?[a-z0-9']+"
+_NP = r"(?:the|a|an)\s+(?:(?!(?:and|or)\b)[a-z0-9']+\s+){0,3}?(?!(?:and|or)\b)[a-z0-9']+"
+"""One noun phrase ("the red plate"; "a pear and a basket" is two)."""
 
 
 def _corrected_noun_phrase(out: str, low: str, m: re.Match[str]) -> str | None:
@@ -127,7 +128,11 @@ def _corrected_noun_phrase(out: str, low: str, m: re.Match[str]) -> str | None:
 def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], list[str]]:
     """The text with taken-back statements removed, the objects taken out by name, and those of
     them that another object replaces."""
-    out = text
+    # "... 3 cm forward. Hmm, make it 4.": a new amount said as the next sentence corrects the last one
+    out = re.sub(
+        r"(?<![.])[.!?]\s+((?:hmm+|no+|wait|sorry|actually|oops)\b[,!.]?\s*(?:make (?:it|that)|change (?:it|that) to|i meant?)\s+-?\d)",
+        r" - \1", text,
+    )
     # 1. "X - no, make that Y": drop X (from its clause start) and the marker.
     for _ in range(8):
         m = _MARKER.search(out)
@@ -146,8 +151,12 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
             out = same  # "one apple with a mug and a knife... actually make it two apples"
             continue
         # keep an object list's head ("a lemon, a bowl - no, a mug": only the last item goes)
+        # unless the correction is itself a list ("a pear and a bowl - no, make that a pear and a basket")
         items = [c.end() for c in re.finditer(r",|\band\b", taken)]
-        if items and vocab.name_pattern.search(taken[: items[-1]]):
+        restated = re.match(r"[^.;!?\n\u2014\u2013]*?(?=$|[.;!?\n\u2014\u2013]|\s-)", out[m.end():])
+        again = {n.group(0) for n in vocab.name_pattern.finditer(restated.group(0))} if restated is not None else set()
+        relisted = len(again) >= 2 and bool(again & {n.group(0) for n in vocab.name_pattern.finditer(taken)})
+        if items and vocab.name_pattern.search(taken[: items[-1]]) and not relisted:
             start += items[-1]
             taken = out[start:m.start()]
         keep = " ".join(sorted({k.group(0) for k in _KEEP.finditer(taken)}))
@@ -157,7 +166,11 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         if amount is not None and said_amounts:
             # "lights 20% darker, actually make it 25%": only the amount changes
             old = said_amounts[-1]
-            fixed = taken[: old.start()] + amount.group(1).strip() + " " + taken[old.end():]
+            new_amount = amount.group(1).strip()
+            unit = re.search(r"[a-z%]+\s*$", old.group(0))
+            if unit is not None and re.fullmatch(r"-?\d+(?:\.\d+)?", new_amount):
+                new_amount += f" {unit.group(0).strip()}"  # "3 cm forward. hmm, make it 4": 4 cm
+            fixed = taken[: old.start()] + new_amount + " " + taken[old.end():]
             out = out[:start] + fixed + after[amount.end():]
             continue
         short = re.match(r"\s*([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)

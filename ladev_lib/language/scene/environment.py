@@ -30,7 +30,7 @@ MOTION = re.compile(
     rf"(?:{NUM}\s*(?:cm|mm|m|centimet(?:er|re)s?|millimet(?:er|re)s?|met(?:er|re)s?|inch(?:es)?|deg|degrees?)\b)|"
     r"\b(?:tilt(?:ed|s)?|pan(?:ned|s)?|rotat(?:e|ed|es|ion)|roll(?:ed|s)?|yaw(?:ed)?|pitch(?:ed)?|"
     r"turn(?:ed|s)?|shift(?:ed|s)?|mov(?:e|ed|es)|rais(?:e|ed)|lower(?:ed)?|translat\w*|dolly|dollied)\b|"
-    rf"\b(?:dx|dy|dz|x|y|z)\s*[:=]\s*{NUM}"
+    rf"\b(?:dx|dy|dz|x|y|z)\s*[:=]?\s*{NUM}"
 )
 DEFAULT_WORDS = re.compile(
     r"\b(?:default|normal|unchanged|standard|regular|usual|no change|no changes|as is|original|untouched|nominal)\b"
@@ -183,10 +183,20 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
     worded = re.search(
         r"\b(?:left|right|up|upward|down|downward|clockwise|counterclockwise|counter clockwise|anticlockwise)\b", part
     )
-    for m in re.finditer(
+    axis_first = list(re.finditer(
         rf"\b(dx|dy|dz|x|y|z|roll|pitch|yaw)\s*[:=]?\s*({NUM})\s*(cm|mm|m|deg|degrees?)?(?![\w.])", part
-    ):
-        axis, value, unit = m.group(1), float(m.group(2)), m.group(3)
+    ))
+    rest = part
+    for m in reversed(axis_first):
+        rest = rest[: m.start()] + " " * (m.end() - m.start()) + rest[m.end():]
+    # "+2cm z", "-5 deg yaw": the value before its axis
+    value_first = re.finditer(
+        rf"({NUM})\s*(cm|mm|m|deg|degrees?)?\s+(dx|dy|dz|x|y|z|roll|pitch|yaw)\b(?!\s*[:=]?\s*[-+]?\d)", rest
+    )
+    said = [(m.group(1), m.group(2), m.group(3)) for m in axis_first]
+    said += [(m.group(3), m.group(1), m.group(2)) for m in value_first]
+    for axis, value_text, unit in said:
+        value = float(value_text)
         if axis in ("roll", "pitch", "yaw") and worded is not None and value >= 0:
             continue  # "roll 3 degrees counterclockwise": the words give the sense
         if axis in ("roll", "pitch", "yaw"):

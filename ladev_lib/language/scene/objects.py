@@ -124,6 +124,7 @@ def find_region(text: str) -> tuple[str, str] | None:
     for a, b in sorted(spans, reverse=True):
         text = text[:a] + " " + text[b:]
     text = re.sub(r"\b(?:on|at|in|to|towards?|toward)\s+the\s+(?:side|corner|edge|part)?\b", " ", text)
+    text = re.sub(r"\b(?:towards?|toward)(?:\s+the)?\s*$", " ", text)  # "both toward the left"
     return region, text
 
 _JOINERS = {"and", "or", "plus", "also", "then"}

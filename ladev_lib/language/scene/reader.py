@@ -30,6 +30,7 @@ from ladev_lib.language.scene.objects import (
     unknown_phrase,
 )
 from ladev_lib.language.scene.statements import find_task
+from ladev_lib.language.scene.structured import as_fields
 from ladev_lib.language.scene.words import (
     COUNT_TOTAL,
     FILLERS,
@@ -394,6 +395,11 @@ class _Reader:
             before = text[: m.start()]
             earlier = [o for o in self.out.objects if self._same(o.mention, name)]
             definite = re.search(r"\b(?:the|that|this|its|both|said|same)\s+(?:\w+\s+)?$", before) is not None
+            if definite and not earlier:
+                # "a red plate, the plate in the middle": the one described object that the shorter name ends
+                longer = {o.mention for o in self.out.objects if o.mention and o.mention.endswith(f" {name}")}
+                if len(longer) == 1:
+                    earlier = [o for o in self.out.objects if o.mention in longer]
             bare_update = (
                 not re.search(r"\b(?:a|an|another|one|\d+|add|plus|and|also)\s+(?:\w+\s+)?$", before)
                 and len(matches) == 1 and position is not None and not found
@@ -502,7 +508,7 @@ def read_description(
     description states (its statements are not read as objects); ``task``
     (a type alone). Task statements are taken out of the text either way.
     """
-    found = find_task(correct_relations(spoken_punctuation(description or "")), vocab.ids)
+    found = find_task(correct_relations(spoken_punctuation(disfluencies(as_fields(description or "")))), vocab.ids)
     normal = normalize_text(found.rest, vocab)
     text, dropped, replaced = apply_corrections(expand_groups(normal, vocab), vocab)
     protected, slots = protect_coordinates(text)
@@ -591,7 +597,8 @@ def read_description(
         if i < len(positions):
             op["position"] = positions[i]
         ops.append(op)
-    ops.extend(reading.lighting[-1:])
+    # the last lighting statement wins; "1.0x" / "+0 %" (no change) leaves the light as it is
+    ops.extend(op for op in reading.lighting[-1:] if op.get("intensity_delta", 1.0) != 0.0)
     ops.extend(merge_camera(reading.camera))
     out["operations"] = ops
     return out
@@ -617,6 +624,20 @@ def _same_object(vocab: Vocabulary, a: str | None, b: str) -> bool:
     ida = vocab.name_ids.get(canonical_name(vocab, a))
     idb = vocab.name_ids.get(canonical_name(vocab, b))
     return a == b or (ida is not None and ida == idb) or a.startswith(b) or a.endswith(b) or b.endswith(a)
+
+
+_NUMBER_AHEAD = r"(?=[-+]?\d|(?:a|one|two|three|four|five|six|seven|eight|nine|ten|half|a few)\b)"
+
+
+def disfluencies(text: str) -> str:
+    """Spoken fillers out of the text ("with uh a hammer and um the robot needs ... yeah", "like three degrees").
+
+    A filler set off by commas or dashes ("a bowl, um, a basket") is left: it may mark a correction.
+    """
+    text = re.sub(r"(?<![,\u2014\u2013-])\s+(?:u+h+|u+m+|e+rm+|you know)\b(?!\s*[,\u2014\u2013-])", " ", text, flags=re.IGNORECASE)
+    text = re.sub(r"^\s*(?:u+h+|u+m+|e+rm+)\b\s*", "", text, flags=re.IGNORECASE)
+    text = re.sub(r"[,\s]+\byeah\b(?=\s*(?:and|[,.!?]|$))", "", text, flags=re.IGNORECASE)
+    return re.sub(rf"\b(?:like|about|around|roughly|approximately|maybe|something like)\s+{_NUMBER_AHEAD}", "", text, flags=re.IGNORECASE)
 
 
 def spoken_punctuation(text: str) -> str:

@@ -54,6 +54,8 @@ AGENT_MODAL = re.compile(
     re.IGNORECASE,
 )
 AGENT_DOES = re.compile(
+    # "the robot is put the eggplant in the basket", "robot to put ...": said without standard grammar
+    rf"(?<!for )(?<!for the )\b(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator)\s+(?:is|are|do|does|to)\s+(?={_VERB}\b)|"
     r"\b(?:the\s+)?(?:robot|arm|agent|gripper|policy|manipulator)\s+(?:then\s+|just\s+|simply\s+)?"
     r"(?=(?:picks\s+up|picks|grabs|grasps|lifts|takes|puts|places|sets|moves|brings|stacks|drops|inserts|pushes|"
     r"slides|carries|lays|rests|gets|transfers|picking|grabbing|grasping|lifting|taking|putting|placing|setting|"
@@ -61,6 +63,9 @@ AGENT_DOES = re.compile(
     re.IGNORECASE,
 )
 WANT_TO = re.compile(
+    # pseudo-cleft: "what I want the robot to do is (to) move ...", "what the arm should do is put ..."
+    rf"\bwhat\s+(?:(?:i|we)(?:'d|\s+would)?\s+(?:want|need|like|expect)\s+(?:{_AGENT}\s+)?to\s+do|{_AGENT}\s+"
+    rf"(?:should|must|has\s+to|needs\s+to|will)\s+do)\s+is\s+(?:to\s+)?(?={_VERB}\b)|"
     rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
     rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)"
     rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)"
@@ -96,7 +101,9 @@ PASSIVE = re.compile(
 )
 """A task said in the passive ("the plum should be placed in the bowl")."""
 END_STATE = re.compile(
-    r"(?:^|(?<=[\s,;:]))(?:at the end(?: of (?:the|this|each) (?:episode|trial|run|rollout))?|by the end(?: of (?:the|this) "
+    r"(?:^|(?<=[\s,;:]))(?:(?:when|once|after)\s+(?:the\s+)?(?:robot|arm|agent|it|policy|manipulator|gripper|episode|"
+    r"run|trial|rollout)\s+(?:is|has|'s|has\s+been)\s+(?:done|finished|over|complete|completed|through)|"
+    r"at the end(?: of (?:the|this|each) (?:episode|trial|run|rollout))?|by the end(?: of (?:the|this) "
     r"(?:episode|trial|run))?|in the end|success(?:\s+(?:means|is when|is that|is defined as|=|:))|the end state is(?: that)?|"
     r"the (?:desired|target|final) (?:state|outcome|result) is(?: that)?)\s*[,:]?\s*(?=the\s)",
     re.IGNORECASE,
@@ -131,7 +138,20 @@ _GOES = re.compile(
     r"(?P<rel>on\s+top\s+of|onto|on|into|inside|in|near|next\s+to|beside)\s+(?P<y>.+)$",
     re.IGNORECASE,
 )
-_VERBLESS = re.compile(r"^\s*(?P<x>(?:the\s+)?[a-z0-9' ]{2,40}?)\s+(?P<rel>into|onto)\s+(?P<y>(?:the\s+)?[a-z0-9' ]{2,40}?)\s*$", re.IGNORECASE)
+_VERBLESS = re.compile(
+    r"^\s*(?P<x>(?:the\s+)?[a-z0-9' ]{2,40}?)\s+(?P<rel>into|onto|in|inside|on top of|on|next to|near|beside|close to)\s+"
+    r"(?P<y>(?:the\s+)?[a-z0-9' ]{2,40}?)\s*$",
+    re.IGNORECASE,
+)
+"""A task said without its verb: "plum into the cup", "apple in bowl" (a whole segment; not "a towel on the left")."""
+
+
+_NOT_IN_NOUN_PHRASE = frozenset(
+    {"is", "are", "was", "were", "be", "and", "or", "with", "also", "there", "here", "it", "they", "i", "we", "you",
+     "has", "have", "sits", "stands", "lies", "rests", "table", "scene", "left", "right", "front", "back", "middle",
+     "center", "centre", "side", "corner", "edge"}
+)
+"""Words that do not occur in the two bare noun phrases of a verbless task ("apple in bowl")."""
 
 
 def _as_command(clause: str) -> str:
@@ -140,16 +160,21 @@ def _as_command(clause: str) -> str:
     if m is None:
         return clause
     rel = re.sub(r"\s+", " ", m.group("rel").lower())
-    verb = "move" if rel in ("near", "next to", "beside") else "put"
+    verb = "move" if rel in ("near", "next to", "beside", "close to") else "put"
     return f"{verb} {m.group('x')} {rel} {m.group('y')}"
 
 
 _INTRODUCES = re.compile(r"\b(?:a|an|some|\d+|one|two|three|four|five|six|seven)\s", re.IGNORECASE)
-_CLAUSE_END = re.compile(r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b)|:\s*", re.IGNORECASE)
+_CLAUSE_END = re.compile(
+    r",\s*|\bthen\s+|\band\s+(?=then\b|have\b|let\b|make\b|get\b|(?:the\s+)?(?:robot|arm|agent|gripper|manipulator)\b)|:\s*",
+    re.IGNORECASE,
+)
 _NEW_CLAUSE = re.compile(
     r",?\s*(?:and\s+|but\s+|while\s+|whereas\s+|when\s+|with\s+|plus\s+)?(?:there|it|they|a|an|the|\d+)\b"
     r"|,\s*[a-z][a-z ]{1,20}:"  # ", light: darker 0.35": the next field of a key-value line
-    r"|\s+(?:the\s+)?(?:lights?|lighting|brightness|camera|cam)\b",  # dictated text: the setup goes on
+    # dictated text: the setup goes on ("... near the hammer and lights a bit brighter and tilt the camera")
+    r"|\s+(?:and\s+|also\s+)*(?:the\s+)?(?:lights?|lighting|brightness|camera|cam)\b"
+    r"|\s+and\s+(?:tilt|pan|rotate|raise|lower|dim|brighten|darken)\b",
     re.IGNORECASE
 )
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
@@ -214,7 +239,8 @@ def _cuts(candidate: str) -> list[tuple[str, int]]:
 
 
 _ARROW = re.compile(
-    r"^\s*(?P<src>[^>]+?)\s*(?:->|→|=>)\s*(?P<tgt>[^(]+?)\s*\(\s*(?P<rel>put\s+in|put\s+on|in|into|on|onto|near|move\s+near)\s*\)",
+    r"^\s*(?P<src>[^>]+?)\s*(?:->|→|=>)\s*(?P<tgt>[^(]+?)\s*\(\s*(?P<rel>put\s+in|put\s+on|in|into|inside|on|onto|"
+    r"on\s+top(?:\s+of)?|near|next\s+to|beside|move\s+near)\s*\)",
     re.IGNORECASE,
 )
 
@@ -260,8 +286,9 @@ def _arrow(text: str) -> str:
         rel = bare.group("rel").lower().split()[-1]
         rel = {"into": "in", "onto": "on", "to": "near", "beside": "near"}.get(rel, rel)
         return f"{'move' if rel == 'near' else 'put'} {bare.group('src')} {rel} {bare.group('tgt')}"
-    rel = m.group("rel").lower().split()[-1]
-    rel = {"into": "in", "onto": "on"}.get(rel, rel)
+    rel = re.sub(r"\s+", " ", m.group("rel").lower())
+    rel = {"into": "in", "inside": "in", "onto": "on", "on top": "on", "on top of": "on", "next to": "near",
+           "beside": "near"}.get(rel, rel).split()[-1]
     verb = "move" if rel == "near" else "put"
     return f"{verb} {m.group('src')} {rel} {m.group('tgt')}"
 
@@ -283,7 +310,8 @@ def _normalise(candidate: str) -> str:
     # "one of the carrots" -> "the carrot"
     candidate = re.sub(
         r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+((?:\w+\s+){0,2}?\w+?)(?:e?s)\b"
-        r"(?=\s+(?:near|on|onto|in|into|inside|next|to|by|beside|close|up)\b|\s*$)",
+        r"(?=\s+(?:near|on|onto|in|into|inside|next|to|by|beside|close|up|should|must|will|would|needs?|has|have|"
+        r"goes|go|is|are|ends?|can|gets?|sits?)\b|\s*$)",
         r"the \1", candidate, flags=re.IGNORECASE,
     )
     candidate = re.sub(r"\b(?:one|any|either|each)\s+of\s+(?:the|those|these)\s+", "the ", candidate, flags=re.IGNORECASE)
@@ -300,11 +328,36 @@ def _normalise(candidate: str) -> str:
     return candidate.strip().strip(")(\"'`*").strip()
 
 
+_KEYWORD_TASK = re.compile(
+    r"^\s*(?P<task>move_near|put_on|put_in)\s+(?P<rest>[a-z0-9' ]+?|[a-z0-9' ]+?\s*(?:->|→|=>|,)\s*[a-z0-9' ]+?)\s*$",
+    re.IGNORECASE,
+)
+
+
+def _keyword_frame(text: str, reader: Callable[[str], Frame]) -> Frame | None:
+    """'put_in pear basket': the task's key word and its two objects, the split the reader grounds best."""
+    m = _KEYWORD_TASK.match(text)
+    if m is None:
+        return None
+    pattern = {"move_near": "move {} near {}", "put_on": "put {} on {}", "put_in": "put {} in {}"}[m.group("task").lower()]
+    said = re.split(r"\s*(?:->|→|=>|,)\s*", m.group("rest"))
+    if len(said) == 2:  # "put_on carrot->sponge"
+        frames = [reader(pattern.format(*said))]
+    else:
+        words = m.group("rest").split()
+        frames = [reader(pattern.format(" ".join(words[:k]), " ".join(words[k:]))) for k in range(1, len(words))]
+    frames = [f for f in frames if f.task in TASKS and f.object is not None and f.destination is not None and f.ok]
+    grounded = [f for f in frames if f.object is not None and f.object.object_id and f.destination is not None
+                and f.destination.object_id]
+    best = grounded or frames
+    return best[0] if best else None
+
+
 def _read_one(candidate: str, reader: Callable[[str], Frame]) -> Frame | None:
     text = _normalise(candidate)
     if not text:
         return None
-    frame = reader(text)
+    frame = _keyword_frame(text, reader) or reader(text)
     if any(p is not None and p.candidates for p in (frame.object, frame.destination)):
         return None  # "the cup" with several cups in the catalog: only the scene can say which
     if frame.object is not None and frame.object.head in _SETTING_WORDS:
@@ -328,7 +381,12 @@ def _needs_scene(candidate: str, reader: Callable[[str], Frame]) -> bool:
 
 def _read_span(candidate: str, reader: Callable[[str], Frame]) -> tuple[Frame, int] | None:
     """The frame a statement gives, and how much of the candidate it used (None: no task in it)."""
-    cuts = _cuts(candidate)
+    # an aside in brackets is not part of the statement ("move the pear near the plum (objects: pear,
+    # plum and a plate)"): read without it, and leave it in the text when it ends the statement
+    blank = candidate
+    if not (_ARROW.match(candidate) or _CALL.match(candidate) or _TASK_DICT.match(candidate)):
+        blank = re.sub(r"(?<=\s)\([^()]*\)", lambda m: " " * len(m.group(0)), candidate)
+    cuts = [(raw, min(used, len(raw.rstrip()))) for raw, used in _cuts(blank)]
     for k, (raw, used) in enumerate(cuts):
         frame = _read_one(raw, reader)
         if frame is None:
@@ -401,7 +459,9 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             if frame is not None and span is not None:
                 label = LABEL.search(seg)
                 if label is not None:
-                    start = s + label.start()
+                    # "Correction: the task is to ...": a one-word heading goes with the statement
+                    heading = re.fullmatch(r"\s*[a-z]+\s*[:-]\s*", seg[: label.start()], re.IGNORECASE)
+                    start = s if heading is not None else s + label.start()
                 else:
                     # from the clause the statement starts in ("A and B at the back, then have the robot ...")
                     bounds = [m.end() for m in _CLAUSE_END.finditer(seg[:marked])]
@@ -417,8 +477,13 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
                 found.append(TaskStatement(start, end, seg[marked:].strip(), frame, 2, keep))
                 continue
             if LABEL.search(seg) and seg[marked:].strip():
-                # a labelled task that is none of the four forms is still the task statement
-                found.append(TaskStatement(s, e, seg[marked:].strip(), reader(seg[marked:].strip()), 0))
+                # what a label introduces may be said in any of the ways a statement can be ("Task: at
+                # the end, the sponge should be inside the cup"); else it is the unreadable task statement
+                inner = [t for t in _statements(seg[marked:], reader, names) if t.strength >= 1]
+                if inner:
+                    found.append(TaskStatement(s, e, inner[-1].text, inner[-1].frame, 2))
+                else:
+                    found.append(TaskStatement(s, e, seg[marked:].strip(), reader(seg[marked:].strip()), 0))
                 continue
             if seg[marked:].strip():
                 # about the robot, but only its scene can say which objects: read again there
@@ -445,29 +510,37 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             if frame is not None:
                 found.append(TaskStatement(s, e, _arrow(seg).strip(), frame, 1))
                 continue
-        goes = _GOES.match(seg)
+        # "I'm testing put-in behaviour: the bottle goes into the basket": the clause after a colon
+        tail = seg[seg.rfind(":") + 1:] if ":" in seg else seg
+        goes = _GOES.match(tail)
         if (
-            goes is not None and IMPERATIVE.match(seg) is None
+            goes is not None and IMPERATIVE.match(tail) is None
             and re.match(r"\s*(?:the|that|this)\s", goes.group("x"), re.IGNORECASE)
             and not re.match(r"(?:near|next|beside)", goes.group("rel"), re.IGNORECASE)
             and not re.search(r",|;|\band\b", goes.group("y"))
         ):
             # "The carrot goes on the red plate.": an end state for an object named before is the task
-            said = _as_command(seg)
+            said = _as_command(tail)
             frame = _read(said, reader)
             if frame is not None:
                 found.append(TaskStatement(s, e, said, frame, 1))
                 continue
         verbless = _VERBLESS.match(seg)
         if verbless is not None and IMPERATIVE.match(seg) is None:
-            # "Plum into the cup.": a task said without its verb
-            said = _as_command(seg)
-            frame = _read(said, reader)
-            if frame is not None:
-                found.append(TaskStatement(s, e, said, frame, 1))
-            else:
-                found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
-            continue
+            # "Plum into the cup.": a task said without its verb. With a plain "in" / "on" only a
+            # segment that introduces nothing ("apple in bowl", not "a towel on the plate").
+            strict = verbless.group("rel").lower() in ("into", "onto")
+            words = set(f"{verbless.group('x')} {verbless.group('y')}".lower().split())
+            nouns_only = not words & _NOT_IN_NOUN_PHRASE and len(verbless.group("x").split()) <= 4
+            if nouns_only and (strict or not _INDEFINITE.match(verbless.group("x"))):
+                said = _as_command(seg)
+                frame = _read(said, reader)
+                if frame is not None:
+                    found.append(TaskStatement(s, e, said, frame, 1))
+                    continue
+                if strict:
+                    found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
+                    continue
         retracted = _RETRACT.match(seg)
         if retracted is not None and found and found[-1].frame.object is not None:
             # "... place the strawberry on the sponge... hmm, no, put it in the cup instead": the new task
@@ -486,7 +559,10 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             continue
         seg = _it_as_named(seg, text[:s], names)
         after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
-        frame = _read(seg[m.end():], reader)
+        span = _read_span(seg[m.end():], reader)
+        frame = span[0] if span is not None else None
+        if span is not None and seg[m.end() + span[1]:].lstrip().startswith("("):
+            e = s + m.end() + span[1]  # "(objects: pear, plum and a plate)" after the command stays in the text
         if frame is None:
             if _needs_scene(seg[m.end():], reader):
                 # "put the small yellow brick on the sponge": which brick, only the scene says
@@ -531,6 +607,14 @@ def find_task(
     text = re.sub(r"\s[—–-]+\s*not\s+(?:the|a|an)\s+[^—–\n.-]+?\s*[—–-]+\s", " ", text, flags=re.IGNORECASE)
     text = re.sub(r"\(\s*not\s+(?:the|a|an)\s+[^)]*\)", " ", text, flags=re.IGNORECASE)
     text = re.sub(r"\b(wait|no|sorry|hmm+|actually|oops)\s*[—–]+\s*", r"\1, ", text, flags=re.IGNORECASE)
+    # "make it the tennis ball that goes in the bowl": a cleft correction is the command it clefts
+    text = re.sub(
+        r"\b(?:make\s+(?:it|that)|it(?:'s|\s+is|\s+should\s+be))\s+(the\s+[\w' ]+?)\s+(?:that|which)\s+"
+        r"(?:goes|should\s+go|must\s+go|needs\s+to\s+go|gets\s+put|is\s+put|should\s+be\s+put)\s+"
+        r"(into|in|inside|onto|on|on\s+top\s+of|next\s+to|near|beside)\s+",
+        lambda m: f"{'move' if m.group(2).lower() in ('next to', 'near', 'beside') else 'put'} {m.group(1)} {m.group(2)} ",
+        text, flags=re.IGNORECASE,
+    )
     statements = _statements(text, read, names)
     unreadable = [s for s in statements if s.strength == 0]
     maybe = [s for s in statements if s.strength == -2]

@@ -197,6 +197,8 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("’", "'").replace("‘", "'").replace("“", '"').replace("”", '"')
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
+    # "a bowl (bowl in the center)", "a mug (the mug goes left)": the bracket says where, not another one
+    t = re.sub(r"\b([a-z]+)\s*\(\s*(?:the\s+|that\s+|this\s+)?\1\b(?:\s+(?:is|goes|sits|stands))?\s*", r"\1 (", t)
     t = re.sub(r"(?m)^\s*\d{1,2}[.)]\s+(?=[a-z])", "", t)  # "5. lights 10% dimmer": a list's numbering
     t = re.sub(r"\b(?:just )?for (?:fun|clutter)\b|\bas (?:a )?(?:joke|gag|clutter|distractors?)\b", " ", t)
     t = re.sub(r"\b(?:um+|uh+|erm|er|like)\b(?=\s)", " ", t)  # hesitations ("like three degrees")
