@@ -52,6 +52,8 @@ class Ref:
     """Why a free phrase (key ``~...``) names no one catalog object, for the catalog-only view."""
     candidates: tuple[str, ...] = ()
     """The catalog objects a free phrase fits when the catalog reads it as several ("the can")."""
+    plural: bool = False
+    """A plural phrase ("the bananas": one group to act on) or the pronoun "them"."""
 
     @property
     def free(self) -> bool:
@@ -97,7 +99,13 @@ class Clause:
     """ "cover the pot with the lid": the lid is put on the pot (roles read back to front)."""
     """A pick verb with a "from"/"off" phrase ("lift the bowl from the stove")."""
     unknown_verb: str | None = None
-    """An unlisted word in verb position after "and" / "then" (read as an action outside the tasks)."""
+    """An unlisted word in verb position after "and" / "then", or opening an instruction before an
+    object ("rinse the beaker, then ..."): an action outside the tasks."""
+    temporal: bool = False
+    """A relation says when ("at three", "for an hour", "by the end"); it is left out of ``governed``."""
+    declarative: str | None = None
+    """It opens with a subject and a finite verb: "be" for a copula, an auxiliary or a modal ("I'm
+    wrapping ...", "the milk has been ..."), "verb" for a verb's finite form ("my train leaves ...")."""
     particles: list[str] = field(default_factory=list)
     bare_places: list[str] = field(default_factory=list)
     """Phrases outside any relation that name a place or the robot ("the gripper")."""
@@ -149,7 +157,29 @@ def split_clauses(tokens: Sequence[Token]) -> list[Clause]:
         else:
             current.append(tok)
     flush(None)
+    for k, clause in enumerate(clauses):
+        opening = k == 0 or clauses[k - 1].sentence != clause.sentence
+        task_later = any(t.kind == "VERB" and t.verb_class in ("pick", "place") for c in clauses[k + 1 :] for t in c.tokens)
+        result = k + 1 < len(clauses) and clauses[k + 1].intro == "result"  # "make it so (that) ..."
+        if opening and task_later and not result and clause.unknown_verb is None and _imperative_opening(clause.tokens):
+            clause.unknown_verb = clause.tokens[0].text
     return clauses
+
+
+def _imperative_opening(tokens: Sequence[Token]) -> bool:
+    """A sentence's first word in verb position, before a task verb of a later clause: an unlisted
+    base form before an object ("rinse the beaker, then put it on the shelf": a step of its own),
+    not a participle or a word that opens a subordinate clause ("assuming the bowl is empty, ...").
+    With a relation of its own the clause is the command ("hang the towel on the rack")."""
+    w = tokens[0].text if tokens else ""
+    return (
+        _unknown_verb_at(tokens, 0)
+        and tokens[1].kind in ("DET", "QUANT")  # not "fruit bowl: ...", "make it so ..."
+        and not any(t.kind in ("BE", "MODAL", "AUX", "VERB", "REL") for t in tokens)
+        and w.isalpha() and len(w) > 2 and not w.endswith(("ing", "ed"))
+        and w not in _NOT_NOUNS and w not in lx.DESIRE and w not in lx.SKIPPABLE
+        and not lx.looks_plural(w)
+    )
 
 
 def _gapped_placement(current: Sequence[Token], tokens: Sequence[Token], i: int) -> bool:
@@ -225,7 +255,12 @@ class ClauseReader:
         last: str | None = None  # what the previous element was: "bare" | "governed" | None
 
         def close(ahead: Token | None = None) -> None:
-            nonlocal phrase, last
+            nonlocal phrase, last, gov
+            if phrase and gov is not None and not gov.refs and not gov.places and _says_when(gov.phrase, phrase, ahead):
+                c.governed.remove(gov)  # "at three", "for an hour", "by the end": when, not where
+                c.temporal = True
+                gov, phrase = None, []
+                return
             if phrase:
                 # a free noun phrase needs a noun-phrase position: a determiner, or right after
                 # a verb, a particle or a relation word ("put wine bottle on rack"), or opening a
@@ -238,6 +273,10 @@ class ClauseReader:
                     gov.places.extend(places)
                     last = "governed"
                 else:
+                    coordinated = places and places[0].split()[-1] not in _NOT_COORDINATED
+                    if coordinated and not refs and last == "bare" and before is not None and before.text in ("and", "plus"):
+                        refs = [_coordinated(places[0])]  # "the lamp and the side table": a second object
+                        places = []
                     c.bare.extend(refs)
                     c.bare_places.extend(places)
                     last = "bare" if refs else last
@@ -247,8 +286,9 @@ class ClauseReader:
         for j, tok in enumerate(c.tokens):
             if j < first:
                 continue
-            if tok.text in lx.DESIRE:
-                c.desire = True
+            nxt_text = c.tokens[j + 1].text if j + 1 < len(c.tokens) else ""
+            if tok.text in lx.DESIRE and not (tok.text in _PERFECT and nxt_text not in ("to", "got")):
+                c.desire = True  # "has to be on ..." (not the perfect: "has been sitting out")
             if tok.kind == "WORD" and (tok.text in lx.DESIRE or tok.text == "to") and any(
                 t.kind in ("OBJ", "WORD") and t.text not in lx.DESIRE for t in phrase
             ):
@@ -291,6 +331,7 @@ class ClauseReader:
                 saw_or = True
         close()
         c.verb = _main_verb(verbs)
+        c.declarative = _declarative(c.tokens[first:])
         c.alternatives = saw_or and len({r.object_id or r.text for r in c.refs()}) > 1
         _with_as_source(c)
         _cover_with(c)
@@ -335,8 +376,9 @@ class ClauseReader:
         quantity = next((t.text for t in phrase if t.kind == "QUANT"), None)
         if any(t.kind == "PRON" for t in phrase):
             pron = next(t for t in phrase if t.kind == "PRON")
-            problem = f"'{pron.text}' means more than one object" if pron.text in lx.PLURAL_PRONOUNS else None
-            return [Ref(pron.text, pronoun=problem is None, problem=problem)], []
+            # "them" stands for a group named before ("the crayons ... carry them"); the parser
+            # says when what it stands for is one object
+            return [Ref(pron.text, pronoun=True, plural=pron.text in lx.PLURAL_PRONOUNS)], []
         content = [t for t in phrase if t.kind in ("OBJ", "WORD")]
         while content and content[0].kind == "WORD" and (content[0].text in lx.DESIRE or content[0].text in lx.SKIPPABLE):
             content = content[1:]  # "like the carrot": the desire word is no part of the phrase
@@ -357,7 +399,10 @@ class ClauseReader:
                 assert obj.object_id is not None
                 resolved = self.index.prefer_scene(obj.object_id, words, self.scene, obj.text)
                 refs.append(
-                    Ref(obj.text, resolved.object_id, quantity=quantity, note=resolved.note, words=tuple(words))
+                    Ref(
+                        obj.text, resolved.object_id, quantity=quantity, note=resolved.note, words=tuple(words),
+                        plural=lx.looks_plural(words[-1]),
+                    )
                 )
                 start = k + 1
                 self._last_head = words[-1]
@@ -382,7 +427,7 @@ class ClauseReader:
             found = None  # "the wooden cabinet": a modifier that names catalog objects does not make it one
         if found is None and (
             not free_ok
-            or any(w in _NOT_NOUNS for w in full)
+            or any(w in _NOT_NOUNS and not (w in _NOT_NOUN_NOUNS and w in words[:-1]) for w in full)
             or (head in lx.LOCATION_NOUNS and head not in _FURNITURE)
             or head in GRIPPER_WORDS
             or not head.isalpha()
@@ -391,6 +436,13 @@ class ClauseReader:
         unknown_modifier = any(
             w not in self.index.name_words and w not in lx.COLOR_WORDS and w not in lx.SIZE_WORDS for w in words[:-1]
         )
+        determiner = next((t.text for t in phrase if t.kind == "DET"), None)
+        group = lx.looks_plural(head) and quantity is None and determiner in lx.DEFINITE_DETERMINERS
+        if found is not None and found.object_id is None and found.problem and "plural" in found.problem and group:
+            # "the bananas": a given group, one object to act on (grounded by its head noun); the
+            # catalog, whose objects are single things, names none of it
+            free = _free_words(full)
+            return [Ref(text, FREE + " ".join(free), words=free, free_problem=found.problem, plural=True)], []
         if found is None or (
             found.object_id is None
             and found.problem
@@ -401,7 +453,10 @@ class ClauseReader:
             problem = found.problem if found is not None else f"'{text}' names no known object"
             candidates = found.candidates if found is not None else ()
             return [
-                Ref(text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem, candidates=candidates)
+                Ref(
+                    text, FREE + " ".join(free), quantity=quantity, words=free, free_problem=problem,
+                    candidates=candidates, plural=lx.looks_plural(head),
+                )
             ], []
         return [Ref(text, found.object_id, found.problem, quantity=quantity, note=found.note, words=full)], []
 
@@ -436,6 +491,30 @@ class ClauseReader:
             return "manner"  # "so it doesn't fall": negates no action of the four tasks
         return kind
 
+    @staticmethod
+    def _held_end_state(c: Clause) -> bool:
+        """The object in the robot's gripper as the end state: "I want the key held in your
+        gripper", "the key should end up in your hand": picked up. The relation to the gripper is
+        the pick's end state, no destination (and is dropped; "off the counter" still says where
+        it was)."""
+        held = [
+            g for g in c.placements()
+            if not g.refs and g.places and all(p.split()[-1] in GRIPPER_WORDS for p in g.places)
+        ]
+        verb = c.verb
+        if not held or len(c.bare) != 1 or c.recipient or c.negation:
+            return False
+        if verb is None and not (c.desire or c.intro == "result"):
+            return False  # "the key is in your hand": a description
+        if verb is not None and verb.verb_class not in ("pick", "place"):
+            return False
+        for g in held:
+            c.governed.remove(g)
+        for g in c.governed:
+            if g.relation == "reverse":
+                g.follows = "bare"  # "..., off the counter": where the object is lifted from
+        return True
+
     def _action_kind(self, c: Clause) -> str:
         if c.verb is not None and c.verb.lemma in GRIP_VERBS and any(
             p.split()[-1] in GRIPPER_WORDS for p in c.bare_places
@@ -448,6 +527,8 @@ class ClauseReader:
             return "preamble"  # "open the gripper": a step of the motion, not another task
         if c.covers:
             return "place"
+        if self._held_end_state(c):
+            return "pick"
         has_ref = bool(c.bare)
         object_places = [g for g in c.placements() if g.refs]
         reverse = [g for g in c.governed if g.relation == "reverse" and g.refs]
@@ -489,6 +570,67 @@ class ClauseReader:
         return cls or "other"
 
 
+_NOT_COORDINATED = GRIPPER_WORDS | {"there", "here", "you", "me", "us", "way", "down", "up", "left", "right"}
+"""Places that "and" may join to an object without making a second object ("the cup and your hand")."""
+_PERFECT = frozenset({"has", "have", "had"})
+"""Desire words only before "to" ("has to be"); before a participle they make the perfect."""
+
+
+def _says_when(relation: str, phrase: Sequence[Token], ahead: Token | None) -> bool:
+    """A relation completed by a time, not a place: "at three", "for an hour", "in a minute",
+    "by the end" (not "at the end of the shelf")."""
+    if relation not in lx.TIME_RELATIONS or any(t.kind == "OBJ" for t in phrase):
+        return False
+    words = [w for t in phrase for w in t.text.split()]
+    counted = [w for w in words if w not in lx.NUMBER_WORDS and not w.isdigit()]
+    if not counted:
+        clock = "the" not in words and any(w.isdigit() or w in lx.NUMBER_WORDS - {"a", "an", "of"} for w in words)
+        return relation == "at" and clock  # "at three"
+    if all(w in lx.TIME_WORDS for w in counted):
+        return True
+    of_follows = ahead is not None and ahead.kind == "REL" and ahead.text == "of"
+    return relation in ("by", "in", "until", "till") and counted == [counted[-1]] and counted[-1] in lx.TIME_BOUNDARIES and not of_follows
+
+
+def _coordinated(text: str) -> Ref:
+    """A phrase joined by "and" to the object acted on, read as a place ("the side table"):
+    another object all the same."""
+    words = tuple(text.split())
+    return Ref(text, FREE + " ".join(words), words=words, free_problem=f"'{text}' names no known object")
+
+
+def _declarative(tokens: Sequence[Token]) -> str | None:
+    """A clause that opens with a subject and a finite verb: "I'm wrapping a present", "the milk
+    has been sitting out", "it's supposed to rain" ("be"), "my train leaves at five" ("verb": a
+    form that is no imperative); not addressed to the robot as a command."""
+    k = 0
+    while k < len(tokens) and (tokens[k].kind in ("ADV", "CONJ", "PUNCT") or tokens[k].text in ("so", "well", "anyway")):
+        k += 1
+    if k >= len(tokens):
+        return None
+    first = tokens[k]
+    if first.kind == "PERSON":
+        if first.text in ("you", "yourself"):
+            return None
+        k += 1
+    elif first.kind == "PRON" and first.text in ("it", "that", "this"):
+        k += 1
+    else:
+        start = k
+        while k < len(tokens) and tokens[k].kind in ("DET", "QUANT", "OBJ", "WORD") and tokens[k].text not in _PERFECT:
+            k += 1
+        if k == start or not any(t.kind in ("OBJ", "WORD") for t in tokens[start:k]):
+            return None
+    if k >= len(tokens):
+        return None
+    finite = tokens[k]
+    if finite.kind in ("BE", "AUX", "MODAL") or finite.text in _PERFECT:
+        return "be"
+    if finite.kind == "VERB" and finite.lemma is not None and finite.text != finite.lemma and not finite.text.endswith("ing"):
+        return "verb"
+    return None
+
+
 _FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
 """Place nouns that are objects of their own in open-vocabulary scenes ("put the mug on the shelf")."""
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
@@ -497,6 +639,11 @@ _NOT_NOUNS = frozenset(
     ["how", "about", "what", "where", "why", "when", "whether", "if", "as", "mind", "let", "please", "kindly", "thanks", "okay", "ok", "task", "job", "goal", "aim", "objective", "mission", "instruction", "instructions", "request", "idea", "plan", "step", "steps", "order", "favor", "favour", "time", "moment", "chance", "way", "thing", "things", "something", "anything", "everything", "nothing", "itself", "again", "too", "also", "first", "instead", "already", "anyway", "though", "so", "oh", "ok", "okay", "well", "alright", "hey", "hi", "yes", "yeah", "hmm", "um", "uh", "robot", "manipulator", "agent", "policy", "end", "episode", "trial", "beginning", "start", "success", "aim", "purpose", "percent", "degree", "degrees", "brightness", "lighting", "camera"]
 )
 """Words that never belong to a free noun phrase (a phrase holding one is not an object)."""
+_NOT_NOUN_NOUNS = frozenset(
+    ["task", "job", "goal", "aim", "objective", "mission", "instruction", "request", "idea", "plan", "step", "order", "time", "way", "robot", "end", "start", "camera"]
+)
+"""Those of them that are nouns: they may still be the first noun of a compound ("the *step*
+stool", "the *camera* bag"); as a head, or outside the head's compound, they still are no object."""
 
 
 def _free_words(words: tuple[str, ...]) -> tuple[str, ...]:

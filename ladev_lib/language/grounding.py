@@ -215,9 +215,10 @@ class Grounder:
             # way ("the tool" for a trowel), which the catalog's own groups give for its objects
             # (for a catalog object, a group noun the catalog defines is its own groups' business)
             general = obj.catalog_id is None or head not in lx.HYPERNYMS
+            kind = self._kind_noun(phrase, self.nouns)
             by_group = any(
-                self.nouns.is_a(phrase.text, n) or (general and self.nouns.is_a(n, phrase.text)) for n in obj.names
-            ) or (general and any(self.nouns.is_a(c, phrase.text) for c in _contents(obj)))
+                self.nouns.is_a(phrase.text, n) or (general and self.nouns.is_a(n, kind)) for n in obj.names
+            ) or (general and any(self.nouns.is_a(c, kind) for c in _contents(obj)))
         if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
             if phrase.object_id is None or phrase.object_id == obj.catalog_id:
                 return False
@@ -239,6 +240,19 @@ class Grounder:
             if word in _COLOURS or word in others:
                 return False  # a colour the plain name does not state, or another object's word
         return True
+
+    @staticmethod
+    def _kind_noun(phrase: NounPhrase, nouns: Nouns) -> str:
+        """The kind a phrase names, as WordNet may know it: the compound itself ("mixing bowl"),
+        or, for one WordNet does not know, its head noun when every modifier only says what the
+        thing is made of or holds, or its colour or size ("the glass vessel" is a vessel, the
+        modifiers checked like any other's); a modifier of use ("the cooking vessel") makes a kind
+        of its own, which WordNet cannot tell."""
+        if nouns.senses(phrase.text) or not phrase.modifiers:
+            return phrase.text
+        if all(w in _COLOURS or w in lx.SIZE_WORDS or any(nouns.is_a(w, m) for m in _MATTER) for w in phrase.modifiers):
+            return phrase.head
+        return phrase.text
 
     def _similarity(self, text: str, obj: SceneObject) -> float:
         assert self.embedder is not None
@@ -268,6 +282,8 @@ class Grounder:
         sizes_a, sizes_b = _sizes(a), _sizes(b)
         if sizes_a and sizes_b and not sizes_a & sizes_b:
             return False, f"'{a.text}' -> '{b.text}' (another size)", ga, gb
+        if _number_differs(a, b):
+            return False, f"'{a.text}' -> '{b.text}' (another number)", ga, gb
         sides_a, sides_b = _positions(a), _positions(b)
         if any(lx.OPPOSITE_POSITIONS[s] in sides_b for s in sides_a):
             return False, f"'{_described(a)}' -> '{_described(b)}' (another position)", ga, gb
@@ -350,6 +366,8 @@ class Grounder:
 
 
 _COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
+_MATTER = ("material", "substance", "solid")
+"""WordNet kinds of what a thing is made of or holds ("glass", "plastic", "water")."""
 _COLOUR_ALIASES = {"violet": "purple", "gray": "grey"}
 
 
@@ -376,6 +394,12 @@ def _with_places(q: Qualifier) -> Qualifier:
 
 def _bare(phrase: NounPhrase) -> NounPhrase:
     return NounPhrase(phrase.text, phrase.head, phrase.modifiers, phrase.object_id)
+
+
+def _number_differs(a: NounPhrase, b: NounPhrase) -> bool:
+    """One head noun, once singular and once plural: "the apple" is not "the apples" (a group)."""
+    one_a, one_b = _singular(a.head), _singular(b.head)
+    return one_a == one_b and (a.head == one_a) != (b.head == one_b) and (lx.looks_plural(a.head) or lx.looks_plural(b.head))
 
 
 def _sizes(phrase: NounPhrase) -> frozenset[str]:

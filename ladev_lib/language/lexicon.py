@@ -263,6 +263,39 @@ DETERMINERS = frozenset(["the", "a", "an", "that", "this", "these", "those", "yo
 PRONOUNS = frozenset({"it", "that", "this", "them"})
 """Words that stand for an object already mentioned ("pick it up")."""
 PLURAL_PRONOUNS = frozenset({"them", "these", "those"})
+DEFINITE_DETERMINERS = frozenset(["the", "these", "those", "your", "my", "our", "his", "her", "their", "its"])
+"""Determiners of a definite noun phrase: "the bananas" are a given group, one object to act on."""
+
+
+def looks_plural(word: str) -> bool:
+    """A regular plural noun form ("bananas", "boxes", "keys"; not "glass", "bus", "asparagus")."""
+    return len(word) > 3 and word.isalpha() and word.endswith("s") and not word.endswith(("ss", "us", "is"))
+
+
+INFINITIVE_AFTER = frozenset(
+    ["supposed", "ought", "need", "needs", "needed", "want", "wants", "wanted", "like", "love", "has", "have", "had", "able", "used"]
+)
+"""Words after which "to" marks an infinitive, whatever follows ("it's supposed *to* rain")."""
+TIME_WORDS = frozenset(
+    ["tomorrow", "today", "tonight", "yesterday", "noon", "midnight", "morning", "afternoon", "evening", "night",
+     "oclock", "pm", "am", "seconds", "minute", "minutes", "hour", "hours", "day", "days", "week", "weeks",
+     "while", "bit"]
+)
+"""Nouns of time: a relation completed by one ("for an hour", "in a minute", "at noon") says when, not where."""
+TIME_BOUNDARIES = frozenset(["end", "beginning", "start"])
+"""Nouns that say when after "by" / "in" / "until" ("by the end"); after "at" they may be places."""
+TIME_RELATIONS = frozenset(["at", "by", "in", "for", "within", "until", "till", "after", "before", "around", "during"])
+NUMBER_WORDS = frozenset(
+    ["one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve",
+     "fifteen", "twenty", "thirty", "forty", "fifty", "half", "quarter", "few", "couple", "of", "a", "an", "the"]
+)
+"""Words that count or measure a time ("a couple of minutes", "at three")."""
+DISCOURSE_TAGS = frozenset(
+    ["k", "kk", "ok", "okay", "yeah", "yes", "yep", "yup", "right", "alright", "eh", "huh", "no", "thanks", "cheers", "cool", "mate", "buddy", "pal"]
+)
+"""Words that, alone after a comma at the end of a sentence, ask for assent ("..., k?", "..., ok?")."""
+POSTURE_PARTICIPLES = frozenset(["sitting", "resting", "lying", "laying", "standing"])
+"""Posture participles: before a relation they say how a thing lies ("should end up *lying* on the bench")."""
 RELATIVE_PRONOUNS = frozenset({"that", "which", "who"})
 CONTAINER_NOUNS = frozenset(
     {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair", "tube"}
@@ -301,7 +334,7 @@ RESULT = (
     ("making", "sure", "that"), ("making", "sure"), ("ensuring", "that"), ("ensuring",),
 )
 SKIPPABLE = frozenset(
-    ["please", "kindly", "just", "also", "now", "then", "carefully", "gently", "slowly", "quickly", "first", "simply", "immediately", "really", "try", "to"]
+    ["please", "kindly", "just", "also", "now", "then", "carefully", "gently", "slowly", "quickly", "first", "simply", "immediately", "really", "try", "to", "so", "anyway"]
 )
 """Words that may stand between a conjunction and the verb that starts a clause."""
 
@@ -369,7 +402,7 @@ SIZE_WORDS = frozenset(["small", "large", "big", "little", "mini", "tiny", "huge
 PERSONS = frozenset(["you", "i", "we", "me", "us", "he", "she", "they", "him", "yourself"])
 """Personal pronouns: never objects ("could you", "for me")."""
 ADVERBS = frozenset(
-    ["again", "too", "also", "well", "please", "thanks", "thank", "kindly", "just", "now", "then", "here", "there", "right", "quick", "fast", "asap", "soon", "ok", "okay", "hey", "yo", "hi", "hello", "sure", "maybe", "perhaps", "first", "next", "finally", "already", "still", "very", "real", "really", "gonna", "up", "down", "away"]
+    ["again", "too", "also", "well", "please", "thanks", "thank", "kindly", "just", "now", "then", "here", "there", "right", "quick", "fast", "asap", "soon", "ok", "okay", "hey", "yo", "hi", "hello", "sure", "maybe", "perhaps", "first", "next", "finally", "already", "still", "very", "real", "really", "gonna", "up", "down", "away", "anyway", "anyways", "yeah", "yep", "yup", "tomorrow", "today", "tonight", "yesterday"]
 )
 """Words that never belong to a noun phrase (besides any word ending in -ly)."""
 NOISE_PHRASES: tuple[tuple[str, ...], ...] = (
@@ -377,6 +410,7 @@ NOISE_PHRASES: tuple[tuple[str, ...], ...] = (
     ("go", "ahead"),
     ("as", "well"),
     ("thank", "you"),
+    ("thanks", "a", "lot"), ("thanks", "a", "bunch"), ("thanks", "a", "ton"), ("thanks", "a", "million"),
     ("if", "you", "can"),
     ("if", "you", "could"),
     ("if", "possible"),

@@ -154,7 +154,12 @@ def _mark_qualifiers(act: _Action) -> None:
 
 
 def _resolve_pronouns(clauses: list[Clause]) -> None:
+    """A pronoun acted on is the object acted on before (the focus); a pronoun a relation
+    governs is, where the clause acts on the focus, the object named last besides it ("carry
+    them over to the box and drop them inside *it*": the box). "them" stands for a group only."""
     focus: str | None = None
+    named: list[str] = []  # objects named so far, the latest last
+    plural: dict[str, bool] = {}
     pending: list[Ref] = []
     for c in clauses:
         for ref in c.bare:
@@ -165,19 +170,50 @@ def _resolve_pronouns(clauses: list[Clause]) -> None:
                     pending.append(ref)
             elif ref.object_id is not None:
                 focus = ref.object_id
+                plural[focus] = ref.plural
+                named.append(focus)
+        moved = {r.object_id for r in c.bare if r.object_id is not None}
         for g in c.governed:
             for ref in g.refs:
                 if ref.pronoun:
-                    ref.object_id = focus
-                    if focus is None:
+                    other = next((o for o in reversed(named) if o not in moved), None) if focus in moved else None
+                    ref.object_id = other or focus
+                    if ref.object_id is None:
                         pending.append(ref)
-                elif c.kind == "preamble" and not c.bare and ref.object_id is not None:
-                    focus = ref.object_id  # "move to the ladle, grasp it"
+                elif ref.object_id is not None:
+                    plural[ref.object_id] = ref.plural
+                    named.append(ref.object_id)
+                    if c.kind == "preamble" and not c.bare:
+                        focus = ref.object_id  # "move to the ladle, grasp it"
     later = next((r.object_id for c in clauses for r in c.bare if not r.pronoun and r.object_id), None)
     for ref in pending:
         ref.object_id = later
         if later is None:
             ref.problem = f"'{ref.text}' refers to no object named in the instruction"
+    for c in clauses:
+        for ref in c.refs():
+            if ref.pronoun and ref.plural and ref.object_id is not None and not plural.get(ref.object_id, False):
+                ref.problem = f"'{ref.text}' means more than one object"
+
+
+def _mark_context(clauses: list[Clause]) -> None:
+    """Statements around a command that do not address the robot: "I'm wrapping a present later,
+    so pick up the scissors", "the milk has been sitting out for an hour; put it in the fridge",
+    "my meeting starts at three - move ...", "my son broke a glass, so ...". A clause that asks
+    for none of the tasks, opens with a subject and a finite verb (or says when something
+    happens), wishes for no object and adds nothing ("too", "next") is context: its phrases are
+    neither steps nor other objects (they may still be what a pronoun stands for). A finite verb
+    with a destination ("the cup goes on the plate") states the end state instead."""
+    if not any(c.kind in _ACTIONS for c in clauses):
+        return
+    for c in clauses:
+        stated = c.declarative == "verb" and c.kind in ("place_nodest", "other", "preamble", "release")
+        if c.kind not in ("describe", "topic", "empty") and not stated or c.negation or c.intro == "result":
+            continue
+        wish = c.desire and any(not r.pronoun for r in c.bare)
+        adds = any(t.text in _ADDITIVE for t in c.tokens)  # "the pear is next", "the pear too"
+        if (c.declarative or c.temporal) and not wish and not adds:
+            c.kind = "context"
 
 
 def _mark_topics(clauses: list[Clause]) -> None:
@@ -189,6 +225,8 @@ def _mark_topics(clauses: list[Clause]) -> None:
 
 
 _CHAINING = frozenset({"and", "then", "and then", ","})
+_ADDITIVE = frozenset({"too", "also", "next", "again", "either", "another", "other"})
+"""Words that add to what was asked: a statement holding one ("the pear is next") is no context."""
 
 
 def _elided_objects(clauses: list[Clause]) -> None:
@@ -308,7 +346,12 @@ def _completes_destination(a: _Action, b: _Action) -> bool:
     if len(towards) != 1 or not (over or (towards[0].directional and towards[0].relation in ("near", *PLACEMENT))):
         return False
     completing = [g for g in b.governed() if g.relation in PLACEMENT]
-    if not completing or any(g.refs or not set(g.places) <= _SAME_PLACE for g in completing):
+    # "set it on top" / "drop it in there", or the same object again: "bring it over toward the
+    # window and set it down next to the window", "carry them over to the box and drop them inside it"
+    there = {r.object_id for r in towards[0].refs}
+    if not completing or any(
+        not {r.object_id for r in g.refs} <= there or not set(g.places) <= _SAME_PLACE for g in completing
+    ):
         return False
     if any(r for r in b.bare() if not r.pronoun) or len({g.relation for g in completing}) != 1:
         return False
@@ -340,6 +383,7 @@ class _Composer:
 
     def compose(self) -> Frame:
         _mark_topics(self.clauses)
+        _mark_context(self.clauses)
         _elided_objects(self.clauses)
         _resolve_pronouns(self.clauses)
         negated = [c for c in self.clauses if c.negation and c.kind != "manner"]
@@ -525,7 +569,7 @@ class _Composer:
         excluded = {id(c) for c in negated}
         described = {id(r) for c in (main.clauses if main else []) for g in c.governed if g.qualifier for r in g.refs}
         for c in self.clauses:
-            if c.kind == "manner" or id(c) in excluded:
+            if c.kind in ("manner", "context") or id(c) in excluded:
                 continue
             if c.alternatives:
                 self.reasons.append("alternative objects ('or')")

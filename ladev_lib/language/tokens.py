@@ -166,6 +166,9 @@ def _unfold_sentence(s: list[str]) -> list[str]:
                 return [s[1], *wish, *s[4 + n :]]
     # "it is the drawer that the bowl should go into" -> "the bowl should go into the drawer"
     trailing = len(s) - (1 if s and s[-1] in _PUNCT else 0)
+    fronted = _fronted_relation(s, trailing)
+    if fronted is not None:
+        return fronted
     if len(s) > 5 and s[0] in ("it", "that") and s[1] in _BE_WORDS and trailing > 0 and s[trailing - 1] in _STRANDED:
         rel = next((k for k in range(3, trailing - 1) if s[k] in ("that", "which")), None)
         if rel is not None and rel < trailing - 2:
@@ -184,6 +187,22 @@ def _unfold_sentence(s: list[str]) -> list[str]:
         return s
     related = any(tuple(place[:n]) in lx.RELATIONS for n in range(1, lx.RELATION_MAX_LEN + 1))
     return [*rest, *(place if related else ["to", *place])]
+
+
+def _fronted_relation(s: list[str], trailing: int) -> list[str] | None:
+    """A cleft on a relation phrase: "it is near the bike that the kite should be moved" -> "the
+    kite should be moved near the bike". The clause after "that" must open with its subject."""
+    if len(s) < 7 or s[0] not in ("it", "that") or s[1] not in _BE_WORDS:
+        return None
+    n = next((n for n in range(lx.RELATION_MAX_LEN, 0, -1) if tuple(s[2 : 2 + n]) in lx.RELATIONS), 0)
+    if n == 0 or lx.RELATIONS[tuple(s[2 : 2 + n])] not in ("near", "on", "in"):
+        return None
+    rel = next((k for k in range(3 + n, trailing - 2) if s[k] in ("that", "which")), None)
+    if rel is None or s[rel + 1] not in lx.DETERMINERS and s[rel + 1] not in lx.PRONOUNS:
+        return None
+    if any(w in _PUNCT for w in s[2:rel]):
+        return None
+    return [*s[rel + 1 : trailing], *s[2:rel], *s[trailing:]]
 
 
 def tag_tokens(text: str, index: NameIndex) -> list[Token]:
@@ -211,6 +230,10 @@ def tag_tokens(text: str, index: NameIndex) -> list[Token]:
             tokens.append(Token("RESULT", " ".join(res)))
             i += len(res)
             continue
+        if w in lx.TIME_RELATIONS and i + 1 < len(words) and words[i + 1] in _TIME_ADVERBS:
+            tokens.append(Token("ADV", w))  # "by tomorrow", "until tonight": when, not where
+            i += 1
+            continue
         rel = _relation_at(words, i, index)
         if rel is not None:
             phrase, kind = rel
@@ -234,8 +257,8 @@ def _relation_at(words: list[str], i: int, index: NameIndex) -> tuple[tuple[str,
         nxt = i + n
         if phrase == ("of",) and i > 0 and (words[i - 1] in lx.CONTAINER_NOUNS or words[i - 1] in lx.MEASURE_NOUNS):
             return None  # "a can of coca-cola": one noun phrase, not a relation
-        if phrase == ("to",) and not _starts_phrase(words, nxt, index):
-            return None  # "to" before a verb marks an infinitive ("try to pick")
+        if phrase == ("to",) and (not _starts_phrase(words, nxt, index) or (i > 0 and words[i - 1] in lx.INFINITIVE_AFTER)):
+            return None  # "to" before a verb marks an infinitive ("try to pick", "it's supposed to rain")
         if n == 1 and phrase[0] in lx.PARTICLES and not _starts_phrase(words, nxt, index):
             return None  # a particle: "put it down", "take it out"
         return phrase, kind
@@ -243,12 +266,23 @@ def _relation_at(words: list[str], i: int, index: NameIndex) -> tuple[tuple[str,
 
 
 def _noun_head(w: str, compound: bool, words: list[str], i: int, index: NameIndex) -> bool:
-    """A verb's base form ending a determined noun phrase is its head noun: "the glue *stick*
-    should go ...", "the cake *stand*" (not when an object follows: "the kid, stack the cups")."""
+    """A verb's base form inside a determined noun phrase is a noun: its head when it ends the
+    phrase ("the glue *stick* should go ...", "the cake *stand*"), or the first noun of a
+    compound when one more noun ends the phrase ("the little *hand* shovel near ..."); not when
+    an object follows: "the kid, stack the cups", "the kid hand me the cup")."""
     if not compound or w not in lx.VERBS or lx.VERBS[w][1] != w:
         return False
     nxt = words[i + 1] if i + 1 < len(words) else ""
-    return nxt not in lx.PRONOUNS and nxt not in lx.DETERMINERS and not _starts_phrase(words, i + 1, index)
+    if nxt not in lx.PRONOUNS and nxt not in lx.DETERMINERS and not _starts_phrase(words, i + 1, index):
+        return True
+    return (
+        nxt.isalpha()
+        and nxt not in lx.PRONOUNS and nxt not in lx.DETERMINERS and nxt not in lx.QUANTIFIERS
+        and nxt not in lx.PERSONS and nxt not in lx.VERBS and not is_adverb(nxt)
+        and _starts_phrase(words, i + 1, index)
+        and not _starts_phrase(words, i + 2, index)
+        and (words[i + 2] if i + 2 < len(words) else "") not in lx.PERSONS
+    )
 
 
 def _tag_word(
@@ -260,6 +294,11 @@ def _tag_word(
         return Token("CONJ", w)
     if w in _STATIVE_PARTICIPLES and prev is not None and prev.kind in ("OBJ", "WORD"):
         return Token("ADV", w)  # "the bowl sitting on the cabinet": describes where it is
+    posture = w in lx.POSTURE_PARTICIPLES and (prev is None or prev.kind != "DET")
+    if posture and (_relation_follows(words, i + 1, index) or (prev is not None and prev.kind == "BE")):
+        return Token("ADV", w)  # "should end up lying on the bench", "has been sitting out all day": how it lies
+    if w in lx.DISCOURSE_TAGS and prev is not None and prev.text == "," and _ends_sentence(words, i + 1):
+        return Token("ADV", w)  # a tag asking for assent: "..., k?", "..., ok?"
     describes = (after_det or (prev is not None and prev.kind == "REL")) and _starts_phrase(words, i + 1, index)
     if w in lx.PARTICLES and not describes and not (after_det and w in lx.OPPOSITE_POSITIONS):
         return Token("PART", w)  # after a determiner or a relation word it describes the noun: "(the) back slot"
@@ -301,6 +340,23 @@ def _tag_word(
         cls, lemma = lx.VERBS[w]
         return Token("VERB", w, verb_class=cls, lemma=lemma)
     return Token("WORD", w)
+
+
+_TIME_ADVERBS = frozenset({"tomorrow", "today", "tonight", "yesterday", "now", "then", "later", "soon"})
+
+
+def _relation_follows(words: list[str], i: int, index: NameIndex) -> bool:
+    """A relation word at ``words[i]``, after at most one particle ("sitting *out for* an hour")."""
+    for k in (i, i + 1):
+        if _relation_at(words, k, index) is not None:
+            return True
+        if k >= len(words) or words[k] not in lx.PARTICLES:
+            return False
+    return False
+
+
+def _ends_sentence(words: list[str], i: int) -> bool:
+    return i >= len(words) or words[i] in _SENTENCE_END
 
 
 _STATIVE_PARTICIPLES = frozenset(
