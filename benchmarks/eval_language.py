@@ -86,6 +86,11 @@ SETS: dict[str, tuple[Path, str]] = {
         "eighth open-vocabulary held-out set (recycling, nursery, picnic, laboratory, sewing, LIBERO-like, "
         "SimplerEnv-like), written blind, scored once at 2130271",
     ),
+    "open_vocab_holdout9": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout9.csv",
+        "ninth open-vocabulary held-out set (garden, lab, workshop, toys, bathroom, office; plurals, context "
+        "sentences, step-by-step forms; 40 with scene_objects), written blind, scored once at 4d30df5",
+    ),
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 FIRST_SCORES: dict[str, tuple[float, float, str]] = {
@@ -98,6 +103,7 @@ FIRST_SCORES: dict[str, tuple[float, float, str]] = {
     "open_vocab_holdout6": (0.957, 0.818, "blind"),
     "open_vocab_holdout7": (0.981, 0.927, "blind"),
     "open_vocab_holdout8": (1.000, 0.927, "blind"),
+    "open_vocab_holdout9": (0.930, 0.727, "blind"),
 }
 """First scores of the held-out sets: the held-out figures. Every later figure of a set is a
 development figure (its errors were looked at and general fixes followed)."""
@@ -156,12 +162,13 @@ NOTES = (
     "a size word fits only a scene object of that size; a source and destination the catalog reads "
     "as one object but the scene grounds on two are two objects) removed the 2 scene-grounding false "
     "invalids.",
-    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout8`, 90-100 pairs each): each set was written "
+    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout9`, 90-100 pairs each): each set was written "
     "by a helper that read neither the reader's code nor its tests nor the earlier sets, only the labelling "
     "rules; it was scored once, at the commit named, before anything was changed for it (the 'first score' "
     "column); its errors were then read and general fixes made, so its later figure is a development "
     "figure. First scores, in order: 0.939 / 0.920, 1.000 / 0.860, 0.957 / 0.818, 0.981 / 0.927, "
-    "1.000 / 0.927 (precision / recall; the targets are 0.97 / 0.90, met by the last two rounds). What the rounds "
+    "1.000 / 0.927, 0.930 / 0.727 (precision / recall; the targets are 0.97 / 0.90, met by rounds 7 and 8 only; "
+    "round 9 brought plural objects, context sentences before the command and longer step-by-step forms). What the rounds "
     "taught (each a general rule with tests in our own words): step-by-step pick-ups and placements "
     "spelled as gripper motions (closing the gripper on a thing grasps it, lifting it off where it lies is "
     "a pick, moved above a thing and lowered inside / released onto it is put in / on); pseudo-clefts and "
@@ -326,6 +333,16 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
         "sixth held-out set (60; spec writers, students, non-native, config snippets, dictation, rambling, "
         "minimal notes, reordered), written blind, scored once at 2130271",
     ),
+    "scene_descriptions_holdout7": (
+        ROOT / "tests/data/scene_descriptions_holdout7.jsonl",
+        "seventh held-out set (60; YAML and bracketed configs, dictation, learner English, end states), "
+        "written blind, scored once at 4d30df5",
+    ),
+    "scene_descriptions_holdout8": (
+        ROOT / "tests/data/scene_descriptions_holdout8.jsonl",
+        "eighth held-out set (60; Python-dict, INI, CSV and JSON configs, bug reports, test-plan rows, "
+        "dictation without punctuation), written blind, scored once at c483889",
+    ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
     names = ("n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility")
@@ -356,6 +373,12 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
     ],
     "scene_descriptions_holdout6": [
         _figures("first (blind, 2130271)", 0.633, (0.767, 0.967, 0.850, 0.917, 0.933, 0.983, 0.967, 0.983)),
+    ],
+    "scene_descriptions_holdout7": [
+        _figures("first (blind, 4d30df5)", 0.683, (0.850, 0.933, 0.850, 0.950, 0.917, 0.900, 0.933, 0.933)),
+    ],
+    "scene_descriptions_holdout8": [
+        _figures("first (blind, c483889)", 0.633, (0.800, 0.933, 0.867, 0.900, 0.867, 0.983, 0.950, 0.950)),
     ],
 }
 SCENE_NOTES = (
@@ -389,11 +412,12 @@ SCENE_NOTES = (
     "The first held-out set's five failures (a bare `+ random` line, \"so that there are five in all\", "
     "\"that's what I want the robot to do\", a correction inside dashes losing the random fill, \"but not "
     "the knife after all\") were fixed by general rules after the blind rounds below began.",
-    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout6`, 40-60 descriptions each): "
+    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout8`, 40-60 descriptions each): "
     "each set was written by a helper that read only the dev README's conventions (not the reader's code, "
     "tests or the other sets) and scored once at the commit named before anything changed for it; its "
     "errors were then read and general fixes made, so its current figure is a development figure. First "
-    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633 (target 0.95: not met). The rounds' lessons, "
+    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633, 0.683, 0.633 (target 0.95: not met; no "
+    "upward trend: each round's writers found new forms). The rounds' lessons, "
     "each a general rule with tests in our own words: tasks stated as wishes (\"I need the X on the Y\"), "
     "aims and end states (\"the aim is for the manipulator to ...\", \"success means ...\", \"at the end "
     "of the episode ...\"), end-state sentences (\"the carrot goes on the red plate\"), calls and arrows "
@@ -405,7 +429,13 @@ SCENE_NOTES = (
     "plate\" replacing only the plate); unknown objects named again by their head noun, lamps and category "
     "words as modifiers of unknown objects; lighting fractions, factors and corrected amounts; camera verbs "
     "that carry their direction (lift, dolly), several motions in one sentence, key-value and numbered "
-    "lists, dictated text without punctuation.",
+    "lists, dictated text without punctuation; descriptions written as data (YAML / JSON blocks, Python "
+    "literals, INI sections, a CSV header and row, bracketed, aliased and unit-suffixed keys such as "
+    "`lgt=`, `cam=(dz -4cm)`, `camera_x_cm`), value-before-axis camera values (`+2cm z`), dictation fillers, "
+    "learner grammar (\"robot is put X in Y\"), verbless tasks (\"apple in bowl\"), labelled end states, "
+    "asides in brackets, restated and next-sentence corrections, brand names for their can (\"swap the Red "
+    "Bull for a 7UP\"), defaults that reset an earlier setting, and a named object balancing on a smaller "
+    "top (a can on a 3 cm cube: the placement tolerance and a bounded overhang, not half the width).",
 )
 
 

@@ -28,7 +28,7 @@ from ladev_lib.language.scene.objects import canonical_name
 from ladev_lib.language.scene.words import Vocabulary
 
 _MARKER_WORDS = (
-    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|"
+    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|typo|"
     r"hmm+|scratch that|i mean|or rather|on second thought|not quite|my bad|err?|um+)\b[\s,.:;!-]*)"
 )
 _RESTATE = (
@@ -173,7 +173,7 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
             fixed = taken[: old.start()] + new_amount + " " + taken[old.end():]
             out = out[:start] + fixed + after[amount.end():]
             continue
-        short = re.match(r"\s*([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)
+        short = re.match(r"\s*(?:to (?:the )?)?([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)
         if short is not None and short.group(1).split()[0] in _DIRECTIONS:
             # "roll 3 degrees clockwise - no, counterclockwise": only the direction changes
             word = short.group(1).split()[0]
@@ -258,6 +258,7 @@ def _swap_objects(text: str, names: str, swapped: list[str]) -> str:
     is said (as a new one) and the old one is taken back (listed in ``swapped``)."""
     forms = (
         rf"\binstead of (?:the|a|an) (?P<old>{names}),? (?:use|take|put|go with|make it) (?:the|a|an) (?P<new>{names})",
+        rf"\b(?:use|take|put|go with|make (?:it|that)|i want|add) (?:the|a|an) (?P<new>{names}) instead of (?:the|a|an) (?P<old>{names})",
         rf"\b(?:swap|replace|switch|exchange|trade) (?:the|a|an|that|this) (?P<old>{names}) (?:for|with) (?:the|a|an) (?P<new>{names})",
     )
     for form in forms:

@@ -68,7 +68,7 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     text = re.sub(r"(?<![\d.])(\d+)\s*/\s*(\d+)(?![\d.])", lambda m: f" {100 * int(m.group(1)) / max(int(m.group(2)), 1):g}% ", text)
     text = re.sub(r"\b(\d) quarters\b", lambda m: f" {int(m.group(1)) * 25}% ", text)
     text = re.sub(r"\b(\d) tenths?\b", lambda m: f" {int(m.group(1)) * 10}% ", text)
-    text = re.sub(r"\b(\d) fifths\b", lambda m: f" {int(m.group(1)) * 20}% ", text)
+    text = re.sub(r"\b(\d) fifths?\b", lambda m: f" {int(m.group(1)) * 20}% ", text)
     # "three quarters of what it is now": a level of the current lighting
     text = re.sub(r"\bof (?:what it is now|what it is|the current(?: level| lighting| light)?|current|now)\b", " of normal ", text)
     text = re.sub(r"\b(\d) thirds\b", lambda m: f" {round(int(m.group(1)) * 100 / 3)}% ", text)
@@ -149,7 +149,13 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
             translation = [a + b * scale for a, b in zip(translation, values, strict=True)]
         moved = True
         text = text.replace(key, " ")
+    parts: list[str] = []
     for part in re.split(r"\band\b|,|\bthen\b|\bbut\b|\bwhile\b|\bwhilst\b|\s\+\s", text):
+        if parts and re.fullmatch(rf"\s*(?:by\s+|about\s+)?{NUM}\s*(?:cm|mm|m|deg|degrees?)\s*", part):
+            parts[-1] += f" {part}"  # "tilt it slightly downward, 2 degrees": the amount of the motion before
+        else:
+            parts.append(part)
+    for part in parts:
         if re.search(r"\b(?:dont|do not|not|never|without|no)\s+(?:\w+\s+)?(?:rotat|tilt|pan|roll|yaw|pitch|turn|mov|shift|translat)", part):
             continue  # "don't rotate it"
         if re.search(r"[:=]\s*(?:none|null|no|0|false|unchanged|default)\s*$", part.strip()):
@@ -222,7 +228,7 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
     angle = re.search(rf"({NUM})\s*(?:deg|degrees?)\b", part)
     rotate_verb = re.search(r"\b(tilt\w*|pan\w*|rotat\w*|roll\w*|yaw\w*|pitch\w*|turn\w*|angled)\b", part)
     direction = re.search(
-        r"\b(left|right|up|upward|upwards|down|downward|downwards|forward|forwards|closer|toward|towards|"
+        r"\b(left|right|up|upward|upwards|down|downward|downwards|forward|forwards|closer|nearer|toward|towards|"
         r"backward|backwards|back|away|farther|further|higher|lower|raised|lowered|in|out|"
         r"clockwise|counterclockwise|counter clockwise|anticlockwise|anti clockwise)\b",
         part,
@@ -259,7 +265,7 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
         # verbs that carry their direction: "lifted 5 cm", "dolly 2 cm" (in, toward the table)
         verb = move_verb.group(1)
         dir_word = "up" if verb.startswith(("lift", "elevat", "rais")) else "forward" if verb.startswith("dolly") else None
-    comparative = dir_word in ("higher", "lower", "closer", "farther", "further", "raised", "lowered")
+    comparative = dir_word in ("higher", "lower", "closer", "nearer", "farther", "further", "raised", "lowered")
     if dist is None and ((move_verb is None and not comparative) or dir_word is None):
         return translation, rotation, False
     value = float(dist.group(1)) * length_scale(dist.group(2)) if dist is not None else strength / 100
@@ -269,7 +275,7 @@ def camera_motion(part: str) -> tuple[list[float], list[float], bool]:
         "left": (1, 1.0), "right": (1, -1.0), "up": (2, 1.0), "upward": (2, 1.0), "upwards": (2, 1.0),
         "higher": (2, 1.0), "raised": (2, 1.0), "down": (2, -1.0), "downward": (2, -1.0),
         "downwards": (2, -1.0), "lower": (2, -1.0), "lowered": (2, -1.0), "forward": (0, 1.0),
-        "forwards": (0, 1.0), "closer": (0, 1.0), "in": (0, 1.0), "toward": (0, 1.0), "towards": (0, 1.0), "backward": (0, -1.0),
+        "forwards": (0, 1.0), "closer": (0, 1.0), "nearer": (0, 1.0), "in": (0, 1.0), "toward": (0, 1.0), "towards": (0, 1.0), "backward": (0, -1.0),
         "backwards": (0, -1.0), "back": (0, -1.0), "away": (0, -1.0), "farther": (0, -1.0),
         "further": (0, -1.0), "out": (0, -1.0),
     }.get(dir_word, (1, 1.0))

@@ -132,7 +132,26 @@ class _Reader:
                     self._sentence(sentence, hint)
         return self.out
 
+    def _restates(self, sentence: str) -> bool:
+        """ "So: apple, bowl.": a list, after a summing-up word, of objects all described already."""
+        lead = re.match(r"^\s*(?:so|ie|i\.e\.|that is|to recap|recap|in short|in summary|summary|again|final list)\s*[:,-]\s*",
+                        sentence)
+        if lead is None or not self.out.objects:
+            return False
+        items = [x.strip() for x in re.split(r",|\band\b", sentence[lead.end():].strip(" .")) if x.strip()]
+        said = [o.mention for o in self.out.objects] + [
+            o.position.get("reference") for o in self.out.objects if o.position is not None
+        ]
+        return bool(items) and all(
+            self.vocab.name_pattern.fullmatch(x) is not None
+            and any(self._same(m, canonical_name(self.vocab, x)) for m in said)
+            for x in items
+        )
+
     def _sentence(self, sentence: str, hint: str | None) -> None:
+        if self._restates(sentence):
+            self.out.recognised += 1
+            return
         if "@swap@" in sentence:
             placed = [o for o in self.out.objects if o.position is not None]
             if len(placed) >= 2:
@@ -177,11 +196,19 @@ class _Reader:
             sentence = sentence[: keyed.start()] + " " + sentence[keyed.end():]
         previous = self._previous_domain
         last_object: _ObjectOp | None = None
+        clauses: list[str] = []
         for clause in split_clauses(sentence):
+            if clauses and re.fullmatch(rf"\s*(?:by\s+|about\s+)?{NUM}\s*(?:cm|mm|degrees?|deg|%)\s*", clause):
+                clauses[-1] += f" {clause}"  # "tilt the camera slightly downward, 2 degrees": that motion's amount
+            else:
+                clauses.append(clause)
+        for clause in clauses:
             domain = self._domain(clause, previous, hint)
             if domain == "lighting":
                 self.out.recognised += 1
                 op = read_lighting(clause)
+                if op is None and DEFAULT_WORDS.search(clause):
+                    op = {"op": "set_lighting", "intensity_delta": 0.0}  # "... actually, leave the lighting at default"
                 if op is not None:
                     self.out.lighting.append(op)
             elif domain == "camera":
@@ -189,6 +216,8 @@ class _Reader:
                 op = read_camera(clause, self.slots)
                 if op is not None:
                     self.out.camera.append(op)
+                elif DEFAULT_WORDS.search(clause):
+                    self.out.camera.clear()  # "tilt up 2 degrees, no, leave the camera alone": the last word wins
             elif domain == "environment":
                 if DEFAULT_WORDS.search(clause):
                     self.out.recognised += 1
@@ -358,6 +387,7 @@ class _Reader:
             position = position or {"region": region}
             consumed = True
 
+        placed_at: int | None = None
         if relative is not None:
             name, where_pos = relative
             same = [o for o in self.out.objects if self._same(o.mention, name)]
@@ -366,6 +396,7 @@ class _Reader:
                     same[-1].position = where_pos
             else:
                 self.out.objects.append(_ObjectOp(name, where_pos))
+                placed_at = rel_m.start("name") if rel_m is not None else None  # not read again below
             if position is not None and position.get("reference") and self._same(position["reference"], name):
                 text = text.replace(rel_m.group("name") if rel_m else name, " ", 1)  # the reference is not the subject
         # "the can on the left": an object described before, by its head noun
@@ -391,6 +422,8 @@ class _Reader:
         found: list[_ObjectOp] = []
         matches = list(self.vocab.name_pattern.finditer(text))
         for m in matches:
+            if m.start() == placed_at:
+                continue
             name = canonical_name(self.vocab, m.group(0))
             before = text[: m.start()]
             earlier = [o for o in self.out.objects if self._same(o.mention, name)]
@@ -508,7 +541,8 @@ def read_description(
     description states (its statements are not read as objects); ``task``
     (a type alone). Task statements are taken out of the text either way.
     """
-    found = find_task(correct_relations(spoken_punctuation(disfluencies(as_fields(description or "")))), vocab.ids)
+    source = correct_relations(spoken_punctuation(disfluencies(as_fields(description or ""))))
+    found = find_task(source, vocab.ids)
     normal = normalize_text(found.rest, vocab)
     text, dropped, replaced = apply_corrections(expand_groups(normal, vocab), vocab)
     protected, slots = protect_coordinates(text)
@@ -528,7 +562,7 @@ def read_description(
         idx = [
             i for i, o in enumerate(reading.objects)
             if o.mention == canonical or (key is not None and vocab.name_ids.get(o.mention or "") == key)
-        ]
+        ] or [i for i, o in enumerate(reading.objects) if _same_object(vocab, o.mention, canonical)]  # "red bull" / "red bull can"
         if idx:
             del reading.objects[idx[-1]]
             if reading.total is not None and name not in replaced:
@@ -568,7 +602,8 @@ def read_description(
         out["task"] = {"type": task}
     recognised_task = 1 if stated is not None else 0  # a description that states only its task is read
     if isinstance(out.get("task"), dict):
-        _task_names_described(out["task"], reading, vocab)
+        before = source[: found.start].lower() if found.start is not None and stated is found.task else ""
+        _task_names_described(out["task"], reading, vocab, before)
 
     if description.strip() and reading.recognised + recognised_task == 0:
         out["error"] = "no object, object count, position, lighting or camera setting found in the description"
@@ -582,6 +617,8 @@ def read_description(
             op["position"] = obj.position
         ops.append(op)
     randoms = reading.randoms
+    if only is not None and only.group("n") and reading.total is not None:
+        reading.total = int(only.group("n"))  # "4 in all: ... and one random thing. Actually, only these three."
     if reading.total is None and only is not None:
         # "just those two", "nothing else": the named objects and the task's are all there is
         task_said = [str(v) for k, v in (out.get("task") or {}).items() if k in ("source", "target") and v]
@@ -646,12 +683,21 @@ def spoken_punctuation(text: str) -> str:
     return re.sub(r"\s+comma\b", ",", text, flags=re.IGNORECASE)
 
 
-def _task_names_described(task: dict[str, Any], reading: _Reading, vocab: Vocabulary) -> None:
-    """A task object the catalog does not know, named by the head noun of an object the description
-    names in full ("a TV remote ... place the remote on the towel"), is that object."""
+def _task_names_described(task: dict[str, Any], reading: _Reading, vocab: Vocabulary, before: str = "") -> None:
+    """A task object named by the end of an object the description names in full is that object: one
+    the catalog does not know ("a TV remote ... place the remote on the towel"), or a catalog name said
+    after the fuller one ("a navel orange and a basket; the orange goes in the basket"; ``before`` is
+    the text before the task statement)."""
     unknown = [o.mention for o in reading.objects if o.unknown and o.mention]
+    described = {o.mention for o in reading.objects if o.mention}
     for key in ("source", "target"):
         name = task.get(key)
+        if isinstance(name, str) and not any(_same_object(vocab, m, name) and not m.endswith(f" {name}") for m in described):
+            # "a navel orange and a basket; the orange should end up in the basket": the described one
+            longer = {m for m in described if m.endswith(f" {name}") and m in before}
+            if len(longer) == 1 and not any(m == name for m in described):
+                task[key] = longer.pop()
+                continue
         if not isinstance(name, str) or name in vocab.name_ids or name in vocab.ids.values():
             continue
         fuller = {m for m in unknown if m != name and m.split()[-1] == name.split()[-1] and m.endswith(name)}

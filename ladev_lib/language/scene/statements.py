@@ -201,6 +201,8 @@ class FoundTask:
     statement: str | None = None
     statements: list[TaskStatement] = field(default_factory=list)
     candidates: list[str] = field(default_factory=list)
+    start: int | None = None
+    """Where the chosen statement starts in the text."""
     """Statements marked as the task that need the scene to be read ("the robot moves the green
     brick near the pink one", "plum into the cup"), last first; the reader retries them in its scene."""
 
@@ -437,6 +439,9 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             if m is not None and (marked is None or m.end() < marked):
                 marked = m.end()
         passive = PASSIVE.search(seg)
+        if passive is not None and re.search(r"\b(?:camera|cam|view|lights?|lighting|brightness|illumination)\b",
+                                             seg[: passive.start()], re.IGNORECASE):
+            passive = None  # "the camera should be moved 4 cm closer": a setting, not the task
         if marked is None and passive is not None:
             said = re.sub(r"\s+by\s+(?:the\s+)?(?:robot|arm|manipulator|gripper|agent)\b", "", seg, flags=re.IGNORECASE)
             frame = _read(said, reader)
@@ -525,22 +530,32 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
             if frame is not None:
                 found.append(TaskStatement(s, e, said, frame, 1))
                 continue
-        verbless = _VERBLESS.match(seg)
-        if verbless is not None and IMPERATIVE.match(seg) is None:
-            # "Plum into the cup.": a task said without its verb. With a plain "in" / "on" only a
-            # segment that introduces nothing ("apple in bowl", not "a towel on the plate").
+        # "Plum into the cup.": a task said without its verb, as a whole segment or after the list it
+        # ends ("coke can + bowl, coke next to bowl"). With a plain "in" / "on" only a phrase that
+        # introduces nothing ("apple in bowl", not "a towel on the plate").
+        offsets = [0] + ([seg.rfind(",") + 1] if "," in seg and _RETRACT.match(seg) is None else [])
+        said_verbless = None
+        for offset in offsets:
+            part = seg[offset:]
+            verbless = _VERBLESS.match(part)
+            if verbless is None or IMPERATIVE.match(part) is not None or re.match(rf"\s*{_VERB}\b", part, re.IGNORECASE):
+                continue
             strict = verbless.group("rel").lower() in ("into", "onto")
             words = set(f"{verbless.group('x')} {verbless.group('y')}".lower().split())
             nouns_only = not words & _NOT_IN_NOUN_PHRASE and len(verbless.group("x").split()) <= 4
-            if nouns_only and (strict or not _INDEFINITE.match(verbless.group("x"))):
-                said = _as_command(seg)
-                frame = _read(said, reader)
-                if frame is not None:
-                    found.append(TaskStatement(s, e, said, frame, 1))
-                    continue
-                if strict:
-                    found.append(TaskStatement(s, e, _normalise(said), reader(""), -2))
-                    continue
+            if not nouns_only or (not strict and _INDEFINITE.match(verbless.group("x"))):
+                continue
+            said = _as_command(part)
+            frame = _read(said, reader)
+            if frame is not None:
+                said_verbless = TaskStatement(s + offset, e, said, frame, 1)
+            elif strict and offset == 0:
+                said_verbless = TaskStatement(s, e, _normalise(said), reader(""), -2)
+            if said_verbless is not None:
+                break
+        if said_verbless is not None:
+            found.append(said_verbless)
+            continue
         retracted = _RETRACT.match(seg)
         if retracted is not None and found and found[-1].frame.object is not None:
             # "... place the strawberry on the sponge... hmm, no, put it in the cup instead": the new task
@@ -639,4 +654,4 @@ def find_task(
         "source": _mention(frame.object, names),
         "target": _mention(frame.destination, names) if frame.task != "pick_up" else None,
     }
-    return FoundTask(task, rest, chosen.text, statements, candidates)
+    return FoundTask(task, rest, chosen.text, statements, candidates, chosen.start)

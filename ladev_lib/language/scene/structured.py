@@ -9,6 +9,9 @@ such text into the plain form the reader reads — one ``objects:`` / ``task:`` 
 
 from __future__ import annotations
 
+import ast
+import configparser
+import csv
 import re
 from typing import Any
 
@@ -16,7 +19,7 @@ import yaml
 
 KEYS: dict[str, tuple[str, ...]] = {
     "objects": ("objects", "object", "objs", "obj", "items", "item", "props", "things", "table", "scene", "spawn"),
-    "task": ("task", "goal", "instruction", "command", "job", "todo"),
+    "task": ("task", "goal", "instruction", "command", "job", "todo", "action"),
     "lighting": ("lighting", "lights", "light", "lgt", "lite", "illumination", "brightness", "light level", "lux"),
     "camera": ("camera", "cam", "view", "viewpoint", "pov"),
 }
@@ -25,8 +28,11 @@ _ALIAS = {alias: key for key, aliases in KEYS.items() for alias in aliases}
 _KEY = "|".join(re.escape(a) for a in sorted(_ALIAS, key=len, reverse=True))
 _KEYED = re.compile(rf"(?:^|(?<=[;\n|]))\s*(?:[-*\u2022]\s*)?(?P<key>{_KEY})\s*(?:[:=]|\|(?!\|))\s*", re.IGNORECASE)
 """A key at the start of a line or after a separator: "obj: ...", "; lgt=-0.3", "goal | ..."."""
-_TASK_FIELDS = {"type": "type", "task": "type", "action": "type", "object": "object", "source": "object",
-                "obj": "object", "target": "target", "destination": "target", "container": "target", "dest": "target"}
+_TASK_FIELDS = {"type": "type", "task": "type", "action": "type", "kind": "type", "object": "object",
+                "source": "object", "obj": "object", "target": "target", "destination": "target",
+                "container": "target", "dest": "target", "receptacle": "target"}
+_AXES = frozenset({"x", "y", "z", "dx", "dy", "dz", "yaw", "pitch", "roll"})
+_UNITS = {"cm": "cm", "mm": "mm", "m": "m", "deg": "deg", "degrees": "deg", "degree": "deg"}
 _ABBREVIATIONS = (
     (r"\bdn\b", "down"), (r"\bfwd\b", "forward"), (r"\bbwd\b|\bbk\b", "back"), (r"\bccw\b", "counterclockwise"),
     (r"\bcw\b", "clockwise"), (r"\bdeg\.", "degrees"),
@@ -34,15 +40,31 @@ _ABBREVIATIONS = (
 _SIDE = re.compile(r"\b(pan|yaw|turn|shift|move|slide|truck|rotate|nudge)\s+(?:the\s+camera\s+)?([rl])\b", re.IGNORECASE)
 
 
+def _words(key: Any) -> list[str]:
+    return re.split(r"[\s_.-]+", str(key).strip().lower())
+
+
+def _field(key: Any) -> tuple[str | None, list[str]]:
+    """A key's field and the words after its name ("camera_x_cm" -> camera, [x, cm])."""
+    words = _words(key)
+    for n in (2, 1):
+        name = " ".join(words[:n])
+        if name in _ALIAS:
+            return _ALIAS[name], words[n:]
+    return None, words
+
+
 def _inline(value: Any) -> str:
     if isinstance(value, dict):
         return ", ".join(f"{k} {_inline(v)}" for k, v in value.items() if v is not None)
-    if isinstance(value, list):
+    if isinstance(value, (list, tuple)):
         return ", ".join(_inline(v) for v in value)
     return "none" if value is None else str(value)
 
 
 def _task_text(value: Any) -> str:
+    if isinstance(value, (list, tuple)) and 2 <= len(value) <= 3 and all(isinstance(v, (str, type(None))) for v in value):
+        value = dict(zip(("type", "object", "target"), value, strict=False))  # ("put_on", "pear", "plate")
     if not isinstance(value, dict):
         return _inline(value)
     fields = {_TASK_FIELDS.get(str(k).lower()): v for k, v in value.items()}
@@ -52,23 +74,88 @@ def _task_text(value: Any) -> str:
     return f"{kind}({obj}{', ' + str(target) if target not in (None, '', 'null', 'none') else ''})"
 
 
-def _from_yaml(text: str) -> str | None:
-    """A YAML / JSON mapping with the fields' keys as one line per field; None if it is not one."""
-    if "\n" not in text.strip() and not text.strip().startswith("{"):
+def _camera_text(items: list[tuple[list[str], Any]]) -> str:
+    """Camera values keyed by axis and unit ("yaw_deg: -3", "x_cm = -5", "z: 10mm") as one phrase each."""
+    said = []
+    for words, value in items:
+        if isinstance(value, dict):
+            said.append(_camera_text([(words + _words(k), v) for k, v in value.items()]))
+            continue
+        axis = next((w for w in words if w in _AXES), None)
+        unit = next((_UNITS[w] for w in words if w in _UNITS), None)
+        if axis is None:
+            said.append(" ".join(words + [_inline(value)]).strip())
+        else:
+            numeric = isinstance(value, (int, float)) or re.fullmatch(r"\s*[-+]?\d+(?:\.\d+)?\s*", str(value))
+            said.append(f"{axis} {_inline(value)}{' ' + unit if unit and numeric else ''}")
+    return ", ".join(p for p in said if p)
+
+
+def _fields(data: dict[Any, Any]) -> dict[str, list[tuple[list[str], Any]]]:
+    out: dict[str, list[tuple[list[str], Any]]] = {}
+    for key, value in data.items():
+        field, rest = _field(key)
+        if isinstance(value, dict) and field not in ("task", "camera"):
+            nested = _fields(value)  # "[env] light = -0.5", "scene: {objects: ...}": a section of fields
+            for k, items in nested.items():
+                out.setdefault(k, []).extend(items)
+            if nested:
+                continue
+        if field is not None:
+            out.setdefault(field, []).append((rest, value))
+    return out
+
+
+def _mapping_text(data: dict[Any, Any]) -> str | None:
+    """A mapping of the fields as one "key: value" line each; None when it names fewer than two."""
+    fields = _fields(data)
+    if len(fields) < 2:
+        return None
+    lines = []
+    for field, items in fields.items():
+        if field == "camera":
+            text = _camera_text(items)
+        elif field == "task":
+            task = {" ".join(w): v for w, v in items if w} or None
+            text = _task_text(task) if task and len(items) > 1 else _task_text(items[0][1])
+        elif field == "objects":
+            text = ", ".join(_inline(v).replace("|", ",") for _, v in items)
+        else:
+            text = ", ".join(_inline(v) for _, v in items)
+        lines.append(f"{field}: {text}")
+    return "\n".join(lines)
+
+
+def _parse(text: str) -> dict[Any, Any] | None:
+    """Text that is data: YAML / JSON, a Python literal, INI sections or a CSV header and row."""
+    stripped = text.strip()
+    literal = re.sub(r"^[A-Za-z_]\w*\s*=\s*(?=[{\[])", "", stripped)
+    if literal.startswith("{"):
+        try:
+            value = ast.literal_eval(literal)
+            if isinstance(value, dict):
+                return value
+        except (ValueError, SyntaxError, MemoryError, RecursionError):
+            pass
+    if re.search(r"(?m)^\s*\[[\w .-]+\]\s*$", stripped):
+        parser = configparser.ConfigParser(strict=False, interpolation=None)
+        try:
+            parser.read_string(stripped)
+            return {name: dict(parser[name]) for name in parser.sections()}
+        except configparser.Error:
+            pass
+    lines = stripped.splitlines()
+    if len(lines) == 2 and lines[0].count(",") >= 2:
+        header, row = next(csv.reader([lines[0]])), next(csv.reader([lines[1]]))
+        if len(header) == len(row):
+            return dict(zip(header, row, strict=True))
+    if "\n" not in stripped and not stripped.startswith("{"):
         return None
     try:
-        data = yaml.safe_load(text)
+        value = yaml.safe_load(text)
     except yaml.YAMLError:
         return None
-    if not isinstance(data, dict):
-        return None
-    keyed = {_ALIAS.get(str(k).lower().replace("_", " ")): v for k, v in data.items()}
-    if len([k for k in keyed if k is not None]) < 2 or None in keyed:
-        return None  # not a scene mapping, or keys this reader would lose
-    lines = []
-    for key, value in keyed.items():
-        lines.append(f"{key}: {_task_text(value) if key == 'task' else _inline(value)}")
-    return "\n".join(lines)
+    return value if isinstance(value, dict) else None
 
 
 _BRACKET_KEY = re.compile(rf"[\[<]\s*({_KEY})\s*[\]>]\s*[:=]?\s*", re.IGNORECASE)
@@ -77,12 +164,15 @@ _BRACKET_KEY = re.compile(rf"[\[<]\s*({_KEY})\s*[\]>]\s*[:=]?\s*", re.IGNORECASE
 
 def as_fields(text: str) -> str:
     """Data-like descriptions rewritten as plain keyed lines; prose unchanged."""
-    text = _BRACKET_KEY.sub(lambda m: f"\n{_ALIAS[m.group(1).lower()]}: ", text)
-    mapped = _from_yaml(text)
+    data = _parse(text)
+    mapped = _mapping_text(data) if data is not None else None
     if mapped is not None:
         text = mapped
     else:
+        text = _BRACKET_KEY.sub(lambda m: f"\n{_ALIAS[m.group(1).lower()]}: ", text)
         text = _KEYED.sub(lambda m: f"\n{_ALIAS[m.group('key').lower()]}: ", text)
+    # "put_in(strawberry; large orange cup)": the call's arguments
+    text = re.sub(r"\b((?:pick_up|move_near|put_on|put_in)\s*\([^;()]*);", r"\1,", text, flags=re.IGNORECASE)
     # "carrot@front": an object and its place
     text = re.sub(r"(?<=[a-z])\s*@\s*(left|right|front|back|center|centre|middle|rear)\b", r" at the \1", text,
                   flags=re.IGNORECASE)

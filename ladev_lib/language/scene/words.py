@@ -54,7 +54,7 @@ FILLERS = {
     "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
     "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
-    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank",
+    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank", "wait", "oops", "sorry", "typo",
     "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
 NON_OBJECT_NOUNS = frozenset({
@@ -203,6 +203,10 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = re.sub(r"\b(?:just )?for (?:fun|clutter)\b|\bas (?:a )?(?:joke|gag|clutter|distractors?)\b", " ", t)
     t = re.sub(r"\b(?:um+|uh+|erm|er|like)\b(?=\s)", " ", t)  # hesitations ("like three degrees")
     t = re.sub(r"\ba handful of\b", " some ", t)
+    # "on the left of the table", "at the back side of the table": a region of the table, not a relation
+    t = re.sub(r"\b(?:(?:on|at|to|in|toward|towards)\s+)?the\s+(left|right|front|back|rear|far|near|middle|center|centre)"
+               r"(?:\s+(?:hand\s+)?(?:side|edge|part|half|end))?\s+of\s+the\s+(?:table|tabletop|table top|workspace|scene)\b",
+               lambda m: f"at the {m.group(1)}{' side' if m.group(1) in ('far', 'near') else ''}", t)
     # "more dark", "less bright": comparatives said with more / less
     t = re.sub(r"\bmore (?:dark|dim)\b|\bless (?:bright|light)\b", " darker ", t)
     t = re.sub(r"\bmore (?:bright|light|strong)\b|\bless (?:dark|dim)\b", " brighter ", t)
@@ -239,7 +243,27 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
             spaced = name.replace("~", " ")
             if spaced in t:
                 t = re.sub(rf"(?<![a-z0-9]){re.escape(spaced)}(?![a-z0-9])", name, t)
-    return t
+    return complete_short_names(t, vocab)
+
+
+def complete_short_names(text: str, vocab: Vocabulary) -> str:
+    """ "a red bull can ... swap the red bull for a 7up": a definite mention that is the start of
+    exactly one name said before (a brand for its can) is that object."""
+    said = [(m.start(), m.group(0)) for m in vocab.name_pattern.finditer(text)]
+    if not said:
+        return text
+
+    def complete(m: re.Match[str]) -> str:
+        words = m.group("words")
+        if vocab.name_pattern.fullmatch(words):
+            return m.group(0)
+        longer = {name for at, name in said if at < m.start() and name.startswith(f"{words} ")}
+        return f"{m.group('det')} {longer.pop()}" if len(longer) == 1 else m.group(0)
+
+    return re.sub(
+        r"\b(?P<det>the|that|this)\s+(?P<words>[a-z0-9]+(?:\s[a-z0-9]+)?)(?=\s+(?:for|with|on|in|to|near|instead|and|or)\b|\s*[.,;:!?]|$)",
+        complete, text,
+    )
 
 
 # -- segmentation ------------------------------------------------------------------
