@@ -91,6 +91,11 @@ SETS: dict[str, tuple[Path, str]] = {
         "ninth open-vocabulary held-out set (garden, lab, workshop, toys, bathroom, office; plurals, context "
         "sentences, step-by-step forms; 40 with scene_objects), written blind, scored once at 4d30df5",
     ),
+    "open_vocab_holdout10": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout10.csv",
+        "tenth open-vocabulary held-out set (hospital, school, garage, camping, pets, music room; learner "
+        "English, chatty context, very short commands; 41 with scene_objects), written blind, scored once at 86ba673",
+    ),
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 FIRST_SCORES: dict[str, tuple[float, float, str]] = {
@@ -104,6 +109,7 @@ FIRST_SCORES: dict[str, tuple[float, float, str]] = {
     "open_vocab_holdout7": (0.981, 0.927, "blind"),
     "open_vocab_holdout8": (1.000, 0.927, "blind"),
     "open_vocab_holdout9": (0.930, 0.727, "blind"),
+    "open_vocab_holdout10": (1.000, 0.782, "blind"),
 }
 """First scores of the held-out sets: the held-out figures. Every later figure of a set is a
 development figure (its errors were looked at and general fixes followed)."""
@@ -162,13 +168,14 @@ NOTES = (
     "a size word fits only a scene object of that size; a source and destination the catalog reads "
     "as one object but the scene grounds on two are two objects) removed the 2 scene-grounding false "
     "invalids.",
-    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout9`, 90-100 pairs each): each set was written "
+    "Blind rounds (`open_vocab_holdout4` to `open_vocab_holdout10`, 90-100 pairs each): each set was written "
     "by a helper that read neither the reader's code nor its tests nor the earlier sets, only the labelling "
     "rules; it was scored once, at the commit named, before anything was changed for it (the 'first score' "
     "column); its errors were then read and general fixes made, so its later figure is a development "
     "figure. First scores, in order: 0.939 / 0.920, 1.000 / 0.860, 0.957 / 0.818, 0.981 / 0.927, "
-    "1.000 / 0.927, 0.930 / 0.727 (precision / recall; the targets are 0.97 / 0.90, met by rounds 7 and 8 only; "
-    "round 9 brought plural objects, context sentences before the command and longer step-by-step forms). What the rounds "
+    "1.000 / 0.927, 0.930 / 0.727, 1.000 / 0.782 (precision / recall; the targets are 0.97 / 0.90, met by rounds 7 "
+    "and 8 only; rounds 9 and 10 brought plural objects, context sentences before the command, learner English "
+    "and longer step-by-step forms). What the rounds "
     "taught (each a general rule with tests in our own words): step-by-step pick-ups and placements "
     "spelled as gripper motions (closing the gripper on a thing grasps it, lifting it off where it lies is "
     "a pick, moved above a thing and lowered inside / released onto it is put in / on); pseudo-clefts and "
@@ -343,6 +350,11 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
         "eighth held-out set (60; Python-dict, INI, CSV and JSON configs, bug reports, test-plan rows, "
         "dictation without punctuation), written blind, scored once at c483889",
     ),
+    "scene_descriptions_holdout9": (
+        ROOT / "tests/data/scene_descriptions_holdout9.jsonl",
+        "ninth held-out set (60; mostly prose and notes: lab members, students, a manager, non-native "
+        "writers), written blind, scored once at 86ba673",
+    ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
     names = ("n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility")
@@ -380,6 +392,9 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
     "scene_descriptions_holdout8": [
         _figures("first (blind, c483889)", 0.633, (0.800, 0.933, 0.867, 0.900, 0.867, 0.983, 0.950, 0.950)),
     ],
+    "scene_descriptions_holdout9": [
+        _figures("first (blind, 86ba673)", 0.817, (0.933, 0.983, 0.950, 0.967, 0.950, 0.950, 1.000, 0.983)),
+    ],
 }
 SCENE_NOTES = (
     "`scene_descriptions_holdout` (30 rows, `tests/data/`) was written in our own words before the reader "
@@ -412,12 +427,13 @@ SCENE_NOTES = (
     "The first held-out set's five failures (a bare `+ random` line, \"so that there are five in all\", "
     "\"that's what I want the robot to do\", a correction inside dashes losing the random fill, \"but not "
     "the knife after all\") were fixed by general rules after the blind rounds below began.",
-    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout8`, 40-60 descriptions each): "
+    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout9`, 40-60 descriptions each): "
     "each set was written by a helper that read only the dev README's conventions (not the reader's code, "
     "tests or the other sets) and scored once at the commit named before anything changed for it; its "
     "errors were then read and general fixes made, so its current figure is a development figure. First "
-    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633, 0.683, 0.633 (target 0.95: not met; no "
-    "upward trend: each round's writers found new forms). The rounds' lessons, "
+    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633, 0.683, 0.633, 0.817 (target 0.95: not "
+    "met; round 9, mostly prose and notes, was the first above 0.75; rounds 7 and 8 leaned on configs and "
+    "dictation). The rounds' lessons, "
     "each a general rule with tests in our own words: tasks stated as wishes (\"I need the X on the Y\"), "
     "aims and end states (\"the aim is for the manipulator to ...\", \"success means ...\", \"at the end "
     "of the episode ...\"), end-state sentences (\"the carrot goes on the red plate\"), calls and arrows "

@@ -28,11 +28,11 @@ from ladev_lib.language.scene.objects import canonical_name
 from ladev_lib.language.scene.words import Vocabulary
 
 _MARKER_WORDS = (
-    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|typo|"
+    r"(?:(?:no+(?=\s*[,!—–-]|\s+wait\b|\s+make\b|\s+sorry\b|\s+i mean\b)|nope|wait|sorry|oops|actually|correction|typo|never ?mind|"
     r"hmm+|scratch that|i mean|or rather|on second thought|not quite|my bad|err?|um+)\b[\s,.:;!-]*)"
 )
 _RESTATE = (
-    r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|"
+    r"(?:(?:not enough|too much|too little|make (?:that|it)|change (?:that|it) to|instead(?: of that)?|just|only|"
     r"i meant?|lets (?:say|do|make it|go with)|go with|it should be|should be|"
     r"thats too (?:much|little|bright|dark|far)(?:[\s,]+(?:go with|make it|use|lets say))?)\b[\s,:]*)"
 )
@@ -130,7 +130,9 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
     them that another object replaces."""
     # "... 3 cm forward. Hmm, make it 4.": a new amount said as the next sentence corrects the last one
     out = re.sub(
-        r"(?<![.])[.!?]\s+((?:hmm+|no+|wait|sorry|actually|oops)\b[,!.]?\s*(?:make (?:it|that)|change (?:it|that) to|i meant?)\s+-?\d)",
+        r"(?<![.])[.!?]\s+((?:hmm+|no+|wait|sorry|actually|oops)\b[,!.]?\s*(?:(?:no+|sorry)\b[,!.]?\s*)?"
+        r"(?:(?:make (?:it|that)|change (?:it|that) to|i meant?|just)\s+-?\d|(?:"
+        + "|".join(_DIRECTIONS) + r")\b\s*(?=$|[.;!\n])))",
         r" - \1", text,
     )
     # 1. "X - no, make that Y": drop X (from its clause start) and the marker.
@@ -259,6 +261,7 @@ def _swap_objects(text: str, names: str, swapped: list[str]) -> str:
     forms = (
         rf"\binstead of (?:the|a|an) (?P<old>{names}),? (?:use|take|put|go with|make it) (?:the|a|an) (?P<new>{names})",
         rf"\b(?:use|take|put|go with|make (?:it|that)|i want|add) (?:the|a|an) (?P<new>{names}) instead of (?:the|a|an) (?P<old>{names})",
+        rf"\bnot (?:the|a|an) (?:[a-z]+ )?(?P<old>{names}),? (?:but |use |take |go with |make it |i want )(?:the|a|an) (?P<new>{names})",
         rf"\b(?:swap|replace|switch|exchange|trade) (?:the|a|an|that|this) (?P<old>{names}) (?:for|with) (?:the|a|an) (?P<new>{names})",
     )
     for form in forms:

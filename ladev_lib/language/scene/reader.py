@@ -216,7 +216,9 @@ class _Reader:
                 op = read_camera(clause, self.slots)
                 if op is not None:
                     self.out.camera.append(op)
-                elif DEFAULT_WORDS.search(clause):
+                elif DEFAULT_WORDS.search(clause) or re.search(
+                    r"\b(?:dont|do not|no need to|never)\s+(?:move|touch|change)\s+(?:the\s+)?(?:camera|cam|view|it)\b", clause
+                ):
                     self.out.camera.clear()  # "tilt up 2 degrees, no, leave the camera alone": the last word wins
             elif domain == "environment":
                 if DEFAULT_WORDS.search(clause):

@@ -105,7 +105,10 @@ END_STATE = re.compile(
     r"run|trial|rollout)\s+(?:is|has|'s|has\s+been)\s+(?:done|finished|over|complete|completed|through)|"
     r"at the end(?: of (?:the|this|each) (?:episode|trial|run|rollout))?|by the end(?: of (?:the|this) "
     r"(?:episode|trial|run))?|in the end|success(?:\s+(?:means|is when|is that|is defined as|=|:))|the end state is(?: that)?|"
-    r"the (?:desired|target|final) (?:state|outcome|result) is(?: that)?)\s*[,:]?\s*(?=the\s)",
+    r"the (?:desired|target|final) (?:state|outcome|result) is(?: that)?|"
+    # "what we want at the end is the golf ball sitting on the plate"
+    r"what (?:i|we|you) (?:want|need|expect|would like|'d like|like) (?:to see )?(?:at the end |in the end |afterwards )?is(?: that| for)?)"
+    r"\s*[,:]?\s*(?=the\s)",
     re.IGNORECASE,
 )
 """A stated end state ("success means the marble ends up in the cup"): the task, when it reads as one."""
@@ -174,7 +177,7 @@ _NEW_CLAUSE = re.compile(
     r"|,\s*[a-z][a-z ]{1,20}:"  # ", light: darker 0.35": the next field of a key-value line
     # dictated text: the setup goes on ("... near the hammer and lights a bit brighter and tilt the camera")
     r"|\s+(?:and\s+|also\s+)*(?:the\s+)?(?:lights?|lighting|brightness|camera|cam)\b"
-    r"|\s+and\s+(?:tilt|pan|rotate|raise|lower|dim|brighten|darken)\b",
+    r"|,?\s+and\s+(?:tilt|pan|rotate|raise|lower|dim|brighten|darken)\b",
     re.IGNORECASE
 )
 _RELATIVE = re.compile(r",\s*(?=(?:which|that|who)\s+(?:is|are|sits?|stands?|lies|lying)\b)", re.IGNORECASE)
@@ -576,17 +579,24 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
         after_verb = re.sub(rf"^\s*{_VERB}\s*(?:up\s+)?", "", seg[m.end():], flags=re.IGNORECASE)
         span = _read_span(seg[m.end():], reader)
         frame = span[0] if span is not None else None
-        if span is not None and seg[m.end() + span[1]:].lstrip().startswith("("):
-            e = s + m.end() + span[1]  # "(objects: pear, plum and a plate)" after the command stays in the text
+        if span is not None and (
+            seg[m.end() + span[1]:].lstrip().startswith("(") or _NEW_CLAUSE.match(seg, m.end() + span[1])
+        ):
+            # what follows the command stays in the text: "(objects: pear, plum and a plate)", ", and tilt the camera"
+            e = s + m.end() + span[1]
         if frame is None:
             if _needs_scene(seg[m.end():], reader):
                 # "put the small yellow brick on the sponge": which brick, only the scene says
                 found.append(TaskStatement(s, e, _normalise(seg[m.end():].strip()), reader(""), -2))
             continue
-        if _INDEFINITE.match(after_verb) and (
-            frame.object is None
-            or re.search(rf"\b{re.escape(frame.object.head.rstrip('y'))}", text[:s], re.IGNORECASE) is None
-        ):
+        said_before = frame.object is not None and (
+            re.search(rf"\b{re.escape(frame.object.head.rstrip('y'))}", text[:s], re.IGNORECASE) is not None
+            or (  # "two dice ... pick up a die": the object the catalog grounds it on, by its name
+                names is not None and frame.object.object_id in names
+                and re.search(rf"\b{re.escape(names[frame.object.object_id])}", text[:s], re.IGNORECASE) is not None
+            )
+        )
+        if _INDEFINITE.match(after_verb) and not said_before:
             continue  # "put a carrot near the plate" sets the scene; "two apples ... put an apple in" is the task
         back = i + 1 < len(spans) and BACK_LABEL.match(text[spans[i + 1][0]:spans[i + 1][1]]) is not None
         found.append(TaskStatement(s, e, seg[m.end():].strip(), frame, 2 if back else 1))

@@ -31,6 +31,12 @@ _KEYED = re.compile(rf"(?:^|(?<=[;\n|]))\s*(?:[-*\u2022]\s*)?(?P<key>{_KEY})\s*(
 _TASK_FIELDS = {"type": "type", "task": "type", "action": "type", "kind": "type", "object": "object",
                 "source": "object", "obj": "object", "target": "target", "destination": "target",
                 "container": "target", "dest": "target", "receptacle": "target"}
+_META = re.compile(
+    r"\s*(?:id|case|case id|tc|test|test id|name|title|note|notes|comment|comments|expected|result|status|owner|"
+    r"author|date|version|run|seed|priority)\s*$",
+    re.IGNORECASE,
+)
+"""Keys that label a row rather than describe the scene ("id", "expected")."""
 _AXES = frozenset({"x", "y", "z", "dx", "dy", "dz", "yaw", "pitch", "roll"})
 _UNITS = {"cm": "cm", "mm": "mm", "m": "m", "deg": "deg", "degrees": "deg", "degree": "deg"}
 _ABBREVIATIONS = (
@@ -103,16 +109,21 @@ def _fields(data: dict[Any, Any]) -> dict[str, list[tuple[list[str], Any]]]:
                 continue
         if field is not None:
             out.setdefault(field, []).append((rest, value))
+        elif isinstance(value, (str, int, float)) and not isinstance(value, bool) and not _META.match(str(key)):
+            out.setdefault(f"other:{key}", []).append(([], value))  # "Setup: brighten the lights ...": kept as said
     return out
 
 
 def _mapping_text(data: dict[Any, Any]) -> str | None:
     """A mapping of the fields as one "key: value" line each; None when it names fewer than two."""
     fields = _fields(data)
-    if len(fields) < 2:
+    if len([f for f in fields if not f.startswith("other:")]) < 2:
         return None
     lines = []
     for field, items in fields.items():
+        if field.startswith("other:"):
+            lines.append(f"{field[len('other:'):]}: {_inline(items[0][1])}")
+            continue
         if field == "camera":
             text = _camera_text(items)
         elif field == "task":
