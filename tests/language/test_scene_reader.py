@@ -901,3 +901,19 @@ def test_a_direction_corrected_in_the_next_sentence_and_camera_take_backs(vocab)
     out = read_description("A plum; pick up the plum. Camera: move 2 cm left; don't rotate it.", vocab)
     camera = _camera(out)
     assert camera is not None and camera[0] == pytest.approx([0.0, 0.02, 0.0]), out
+
+
+@pytest.mark.parametrize(
+    "text, placed, unplaced",
+    [
+        ("Put a mug on the left, and a plum and a pear on the right. Pick up the plum.", ["plum", "pear"], []),
+        ("The bowl at the back, with a fork and a knife up at the front. Pick up the fork.", ["fork", "knife"], []),
+        ("A mug, a plum and a pear on the right. Pick up the plum.", ["pear"], ["mug", "plum"]),
+    ],
+)
+def test_a_position_after_a_pair_of_its_own_is_said_of_both(vocab, text, placed, unplaced):
+    out = read_description(text, vocab)
+    for name in placed:
+        assert _where(out, name) is not None, (name, out)
+    for name in unplaced:
+        assert _where(out, name) is None, (name, out)

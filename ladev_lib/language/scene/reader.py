@@ -304,6 +304,18 @@ class _Reader:
         pair = rf"(?:a|an|the|\d+)\s+{names}\s+and\s+(?:a|an|the|\d+)\s+{names}\b"
         return len(earlier) == 1 and re.match(rf"\s*{pair}", self._sentence_text) is not None
 
+    def _pair_placed(self, found: list[_ObjectOp]) -> bool:
+        """Whether a position after a pair that forms its own group is said of both: "..., and a fork
+        and a spoon on the right", "with a plum and a pear up at the front", "the cup and the mug at
+        the back, and ..." (not the last two of a longer list: "a can, an apple and a sponge on the right")."""
+        earlier = self.out.objects[self._sentence_first:]
+        if len(found) != 1 or not earlier or earlier[-1].position is not None:
+            return False
+        names = self.vocab.name_pattern.pattern
+        pair = rf"(?:a|an|the|one|\d+)\s+{names}\s+and\s+(?:a|an|the|one|\d+)\s+{names}"
+        group = rf"(?:^|:\s*|,\s*(?:and|with|plus)\s+|\bwith\s+)(?:also\s+)?{pair}\s+(?:up\s+|over\s+|down\s+|both\s+)?"
+        return re.search(rf"{group}(?:at|on|in|to|toward|towards|near|by)\b", self._sentence_text.strip()) is not None
+
     def _objects(self, clause: str, last: _ObjectOp | None) -> _ObjectOp | None:
         text = f" {clause} "
         position: dict[str, Any] | None = None
@@ -502,6 +514,8 @@ class _Reader:
                 for obj in self.out.objects[self._sentence_first:]:
                     if obj.position is None:
                         obj.position = dict(position)
+            elif position is not None and self._pair_placed(found):
+                self.out.objects[-1].position = dict(position)
             if position is not None:
                 found[-1].position = position
             self.out.objects.extend(found)
