@@ -355,6 +355,11 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
         "ninth held-out set (60; mostly prose and notes: lab members, students, a manager, non-native "
         "writers), written blind, scored once at 86ba673",
     ),
+    "scene_descriptions_holdout10": (
+        ROOT / "tests/data/scene_descriptions_holdout10.jsonl",
+        "tenth held-out set (60; researchers, technicians, managers, non-native writers, dictation, chat "
+        "notes), written blind, scored once at 2fd1a43",
+    ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
     names = ("n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility")
@@ -395,6 +400,9 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
     "scene_descriptions_holdout9": [
         _figures("first (blind, 86ba673)", 0.817, (0.933, 0.983, 0.950, 0.967, 0.950, 0.950, 1.000, 0.983)),
     ],
+    "scene_descriptions_holdout10": [
+        _figures("first (blind, 2fd1a43)", 0.783, (0.933, 0.967, 0.933, 0.933, 0.983, 0.950, 0.967, 0.983)),
+    ],
 }
 SCENE_NOTES = (
     "`scene_descriptions_holdout` (30 rows, `tests/data/`) was written in our own words before the reader "
@@ -427,12 +435,12 @@ SCENE_NOTES = (
     "The first held-out set's five failures (a bare `+ random` line, \"so that there are five in all\", "
     "\"that's what I want the robot to do\", a correction inside dashes losing the random fill, \"but not "
     "the knife after all\") were fixed by general rules after the blind rounds below began.",
-    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout9`, 40-60 descriptions each): "
+    "Blind rounds (`scene_descriptions_holdout2` to `scene_descriptions_holdout10`, 40-60 descriptions each): "
     "each set was written by a helper that read only the dev README's conventions (not the reader's code, "
     "tests or the other sets) and scored once at the commit named before anything changed for it; its "
     "errors were then read and general fixes made, so its current figure is a development figure. First "
-    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633, 0.683, 0.633, 0.817 (target 0.95: not "
-    "met; round 9, mostly prose and notes, was the first above 0.75; rounds 7 and 8 leaned on configs and "
+    "scene-exact scores, in order: 0.675, 0.600, 0.700, 0.740, 0.633, 0.683, 0.633, 0.817, 0.783 (target "
+    "0.95: not met; rounds 9 and 10 were the first above 0.75; rounds 7 and 8 leaned on configs and "
     "dictation). The rounds' lessons, "
     "each a general rule with tests in our own words: tasks stated as wishes (\"I need the X on the Y\"), "
     "aims and end states (\"the aim is for the manipulator to ...\", \"success means ...\", \"at the end "

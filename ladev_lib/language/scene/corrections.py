@@ -37,7 +37,7 @@ _RESTATE = (
     r"thats too (?:much|little|bright|dark|far)(?:[\s,]+(?:go with|make it|use|lets say))?)\b[\s,:]*)"
 )
 _MARKER = re.compile(
-    r"\s*(?:-+|—|–|,|;|\(|\.\.\.)\s*"
+    r"\s*(?:-+|—|–|,|;|\(|\.\.\.)\s*(?:then\s+)?"
     rf"(?:{_MARKER_WORDS}+{_RESTATE}*|(?:(?<=\.\.\.)|(?<=[-—–]))\s*(?:make (?:that|it)|change (?:that|it) to)\b[\s,:]*)"
 )
 """A self-correction: "- no, make that", ", sorry,", "... actually", "... make that"."""
@@ -131,7 +131,8 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
     # "... 3 cm forward. Hmm, make it 4.": a new amount said as the next sentence corrects the last one
     out = re.sub(
         r"(?<![.])[.!?]\s+((?:hmm+|no+|wait|sorry|actually|oops)\b[,!.]?\s*(?:(?:no+|sorry)\b[,!.]?\s*)?"
-        r"(?:(?:make (?:it|that)|change (?:it|that) to|i meant?|just)\s+-?\d|(?:"
+        r"(?:[a-z']+[,!.]?\s+){0,4}?"  # "hmm, that's too much, make it 50%"
+        r"(?:(?:make (?:it|that)|change (?:it|that) to|i meant?|just|go with|by)\s+(?:-?\d|a (?:quarter|third|fifth|tenth)|half)|(?:"
         + "|".join(_DIRECTIONS) + r")\b\s*(?=$|[.;!\n])))",
         r" - \1", text,
     )
@@ -163,8 +164,11 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
             taken = out[start:m.start()]
         keep = " ".join(sorted({k.group(0) for k in _KEEP.finditer(taken)}))
         after = out[m.end():]
-        amount = re.match(r"\s*(-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?)\s*(?=$|[.;,!\n])", after)
-        said_amounts = list(re.finditer(r"-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?", taken))
+        fraction = r"a (?:quarter|third|fifth|tenth)|(?:a )?half"
+        amount = re.match(
+            rf"\s*(?:by\s+)?(-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?|{fraction})\s*(?=$|[.;,!?\n])", after
+        )
+        said_amounts = list(re.finditer(rf"-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?|\b(?:{fraction})\b", taken))
         if amount is not None and said_amounts:
             # "lights 20% darker, actually make it 25%": only the amount changes
             old = said_amounts[-1]

@@ -39,7 +39,7 @@ RANDOM_WORDS = re.compile(r"\b(?:random|randomly|randomized|arbitrary|perturbed|
 
 DARKER = re.compile(
     r"\b(?:darker|dimmer|dim|dimmed|dimly|dark|darken|darkened|lower|lowered|reduce|reduced|decrease|"
-    r"decreased|less|weaker|fainter|gloomy|gloomier|low|shadowy|minus|down|cut|lessen)\b|-\s*$"
+    r"decreased|less|weaker|fainter|gloomy|gloomier|low|shadowy|minus|down|cut|lessen|below|under)\b|-\s*$"
 )
 BRIGHTER = re.compile(
     r"\b(?:brighter|bright|brightly|brighten|brightened|increase|increased|raise|raised|more|stronger|"

@@ -48,7 +48,8 @@ from ladev_lib.language.scene.words import (
 )
 
 _RANDOM_GROUP = re.compile(
-    r"\b(?P<n>[1-9])\s+(?:other|random|more|extra|additional|arbitrary|unnamed)\s+(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
+    r"\b(?P<n>[1-9])\s+(?:(?:are|will be|should be)\s+)?(?:other|random|more|extra|additional|arbitrary|unnamed)\s+"
+    r"(?P<noun>[a-z]+(?:\s+[a-z]+)?)\b"
     r"|\b(?P<n2>[1-9])\s+(?P<noun2>[a-z]+)\s+(?:at random|of your choice|chosen at random|randomly)\b"
 )
 _RELATION_WORDS = r"right next to|next to|near|beside|by|close to|behind|in front of|left of|right of"
@@ -298,7 +299,7 @@ class _Reader:
         earlier = self.out.objects[self._sentence_first:]
         if len(found) != 1 or not earlier or any(o.position is not None for o in earlier):
             return False
-        if re.search(rf"\b(?:{_PLURAL_VERB}|both|all|together|side by side)\b", clause):
+        if re.search(rf"\b(?:{_PLURAL_VERB}|both|all|together|side by side|clustered|grouped|bunched|huddled|lined up)\b", clause):
             return True
         names = self.vocab.name_pattern.pattern
         pair = rf"(?:a|an|the|\d+)\s+{names}\s+and\s+(?:a|an|the|\d+)\s+{names}\b"
@@ -522,7 +523,8 @@ class _Reader:
             self.out.recognised += 1
             return found[-1]
         if position is not None and (
-            re.search(r"\b(?:all|both|each|all of them|both of them|together|side by side)\b", text)
+            re.search(r"\b(?:all|both|each|all of them|both of them|together|side by side|clustered|grouped|bunched|"
+                      r"huddled|lined up)\b", text)
             or re.search(rf"^\s*(?:2|{_PLURAL_VERB})\b", clause)
         ):
             # "a pepsi can and a sprite can, all lined up at the front": every object of the sentence

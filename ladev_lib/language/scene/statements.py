@@ -64,8 +64,8 @@ AGENT_DOES = re.compile(
 )
 WANT_TO = re.compile(
     # pseudo-cleft: "what I want the robot to do is (to) move ...", "what the arm should do is put ..."
-    rf"\bwhat\s+(?:(?:i|we)(?:'d|\s+would)?\s+(?:want|need|like|expect)\s+(?:{_AGENT}\s+)?to\s+do|{_AGENT}\s+"
-    rf"(?:should|must|has\s+to|needs\s+to|will)\s+do)\s+is\s+(?:to\s+)?(?={_VERB}\b)|"
+    rf"\b(?:what|all|the\s+(?:only|one|main)\s+thing)\s+(?:(?:i|we)(?:'d|\s+would)?\s+(?:want|need|like|expect)\s+"
+    rf"(?:{_AGENT}\s+)?to\s+do|{_AGENT}\s+(?:should|must|has\s+to|needs\s+to|will)\s+do)\s+is\s+(?:to\s+)?(?={_VERB}\b)|"
     rf"\b(?:want|wants|like|need|needs|ask|asks|have|get|tell|make|let|expect|expects|instruct)\s+{_AGENT}\s+(?:to\s+)?(?={_VERB}\b)"
     rf"|\b(?:see|test|check|find\s+out|verify|evaluate|whether|if)\s+(?:if\s+|whether\s+)?{_AGENT}\s+(?:can|could|will|is\s+able\s+to|manages?\s+to)\s+(?={_VERB}\b)"
     rf"|\b(?:see|watch|let|make|have|help)\s+{_AGENT}\s+(?={_VERB}\b)"
@@ -124,7 +124,12 @@ _PLACE_WORDS = frozenset(
      "tabletop", "table top", "surface", "scene", "somewhere", "anywhere", "spot", "area", "rear", "far side",
      "near side", "workspace", "top", "bottom", "place", "position"}
 )
-_SEGMENT = re.compile(r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—")
+_SEGMENT = re.compile(
+    r"\n|\|+|;|•|(?<![\d.])\.(?!\d)|(?<=\d)\.(?=\s|$)|[!?]|\s[—–]\s|\s-\s|—"
+    # "..., but new plan: put the pear in the bowl instead": a change of mind starts a new statement
+    r"|,\s*but\s+(?=(?:let'?s|new plan|change of plan|on second thought|actually|scratch that|now)\b)",
+    re.IGNORECASE,
+)
 
 
 INLINE_LABEL = re.compile(
@@ -573,6 +578,11 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
                 found.append(TaskStatement(s, e, said, frame, 3))
                 continue
         m = IMPERATIVE.match(seg)
+        colon = seg.rfind(":")
+        if m is None and colon > 0 and LABEL.search(seg[: colon + 1]) is None and IMPERATIVE.match(seg[colon + 1:]):
+            # "..., but let's change that: move the red apple next to the cup instead": the command after the colon
+            s, seg = s + colon + 1, seg[colon + 1:]
+            m = IMPERATIVE.match(seg)
         if m is None:
             continue
         seg = _it_as_named(seg, text[:s], names)
@@ -592,14 +602,16 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
         said_before = frame.object is not None and (
             re.search(rf"\b{re.escape(frame.object.head.rstrip('y'))}", text[:s], re.IGNORECASE) is not None
             or (  # "two dice ... pick up a die": the object the catalog grounds it on, by its name
-                names is not None and frame.object.object_id in names
+                names is not None and frame.object.object_id is not None and frame.object.object_id in names
                 and re.search(rf"\b{re.escape(names[frame.object.object_id])}", text[:s], re.IGNORECASE) is not None
             )
         )
         if _INDEFINITE.match(after_verb) and not said_before:
             continue  # "put a carrot near the plate" sets the scene; "two apples ... put an apple in" is the task
         back = i + 1 < len(spans) and BACK_LABEL.match(text[spans[i + 1][0]:spans[i + 1][1]]) is not None
-        found.append(TaskStatement(s, e, seg[m.end():].strip(), frame, 2 if back else 1))
+        # "... move the red apple next to the cup instead": a command that replaces one said before
+        replaces = re.search(r"\binstead\s*$", seg, re.IGNORECASE) is not None and bool(found)
+        found.append(TaskStatement(s, e, seg[m.end():].strip(), frame, 3 if replaces else 2 if back else 1))
         if back:
             ns, ne = spans[i + 1]
             found.append(TaskStatement(ns, ne, "", frame, -1))  # the tag itself, removed with the statement

@@ -54,7 +54,7 @@ FILLERS = {
     "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
     "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
-    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank", "wait", "oops", "sorry", "typo",
+    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank", "wait", "oops", "sorry", "typo", "pls", "plz", "thx",
     "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
 NON_OBJECT_NOUNS = frozenset({
@@ -203,6 +203,7 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = re.sub(r"\b(?:just )?for (?:fun|clutter)\b|\bas (?:a )?(?:joke|gag|clutter|distractors?)\b", " ", t)
     t = re.sub(r"\b(?:um+|uh+|erm|er|like)\b(?=\s)", " ", t)  # hesitations ("like three degrees")
     t = re.sub(r"\ba handful of\b", " some ", t)
+    t = re.sub(r"\b(near|close|next) of\b", lambda m: "next to" if m.group(1) == "next" else m.group(1), t)  # "near of the plate"
     # "on the left of the table", "at the back side of the table": a region of the table, not a relation
     t = re.sub(r"\b(?:(?:on|at|to|in|toward|towards)\s+)?the\s+(left|right|front|back|rear|far|near|middle|center|centre)"
                r"(?:\s+(?:hand\s+)?(?:side|edge|part|half|end))?\s+of\s+the\s+(?:table|tabletop|table top|workspace|scene)\b",
