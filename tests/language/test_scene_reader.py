@@ -964,3 +964,10 @@ def test_groups_placed_together_random_fillers_and_then_actually(vocab):
     out = read_description("A plum; pick up the plum. Camera up 2 cm, then actually down 2 cm.", vocab)
     camera = _camera(out)
     assert camera is not None and camera[0] == pytest.approx([0.0, 0.0, -0.02]), out
+
+
+def test_a_translation_vector_is_in_the_cameras_own_frame_like_its_axis_keys(vocab):
+    # [x right, y forward, z up], as "x 2 cm" / "dy = 3" are read; the spec's frame is x forward, y left
+    out = read_description("objects = [plum]\ntask = pick_up(plum)\ncamera.translate_cm = [1, 2, 3]", vocab)
+    camera = _camera(out)
+    assert camera is not None and camera[0] == pytest.approx([0.02, -0.01, 0.03]), out

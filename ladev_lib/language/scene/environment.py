@@ -146,7 +146,10 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
             rotation = [a + b for a, b in zip(rotation, values, strict=True)]
         else:
             scale = 0.01 if re.search(r"\bcm\b", text) or any(abs(v) > 0.5 for v in values) else 1.0
-            translation = [a + b * scale for a, b in zip(translation, values, strict=True)]
+            # "translate_cm = [0, 2, 0]": [x right, y forward, z up] in the camera's own frame, as the
+            # axis keys are read; the spec's frame is x forward, y left, z up
+            x, y, z = values
+            translation = [a + b * scale for a, b in zip(translation, (y, -x, z), strict=True)]
         moved = True
         text = text.replace(key, " ")
     parts: list[str] = []
