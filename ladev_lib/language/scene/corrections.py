@@ -120,9 +120,25 @@ def _corrected_noun_phrase(out: str, low: str, m: re.Match[str]) -> str | None:
     if not said:
         return None
     old = said[-1]
+    np = new.group("np")
+    one = re.fullmatch(r"(the|a|an)\s+((?:[a-z0-9']+\s+)+)one", np)
+    if one is not None:
+        # "... the purple brick next to the board - hmm, no, the green one": the phrase with a modifier
+        # of its own, said again with the new one ("the green brick")
+        stop = r"(?!(?:next|to|near|on|onto|in|into|inside|with|and|or|beside|by|from|of|at)\b)"
+        whole = rf"\b(?:the|a|an)\s+{stop}[a-z0-9']+(?:\s+{stop}[a-z0-9']+){{1,3}}"
+        modified = [p for p in re.finditer(whole, clause)]
+        if not modified:
+            return None
+        old = modified[-1]
+        for p in modified:
+            if p.end() <= m.start() - start:
+                old = p
+                break  # the first such phrase: the object, before the destination
+        np = f"{one.group(1)} {one.group(2)}{old.group(0).split()[-1]}"
     rest = out[m.end() + new.end():]
     rest = re.sub(r"^\s*instead\b", "", rest)
-    return out[: start + old.start()] + new.group("np") + out[start + old.end() : m.start()] + rest
+    return out[: start + old.start()] + np + out[start + old.end() : m.start()] + rest
 
 
 def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], list[str]]:
@@ -135,6 +151,12 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         r"(?:(?:make (?:it|that)|change (?:it|that) to|i meant?|just|go with|by)\s+(?:-?\d|a (?:quarter|third|fifth|tenth)|half)|(?:"
         + "|".join(_DIRECTIONS) + r")\b\s*(?=$|[.;!\n])))",
         r" - \1", text,
+    )
+    # "... 30% darker. And 30% is too much, say 20%.": the amount restated in the next sentence
+    out = re.sub(
+        r"(?<![.])[.!?]\s+(?:and\s+)?(?:-?\d+(?:\.\d+)?\s*%?\s+)?(?:is|was|seems|thats|that is|its)\s+(?:way\s+)?too\s+"
+        r"(?:much|little|bright|dark|strong|weak|far)\s*,?\s*(?:say|make it|go with|use|lets say|try)\s+(-?\d+(?:\.\d+)?\s*%?)",
+        r" - actually, make it \1", out,
     )
     # 1. "X - no, make that Y": drop X (from its clause start) and the marker.
     for _ in range(8):
@@ -179,7 +201,7 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
             fixed = taken[: old.start()] + new_amount + " " + taken[old.end():]
             out = out[:start] + fixed + after[amount.end():]
             continue
-        short = re.match(r"\s*(?:to (?:the )?)?([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n])", after)
+        short = re.match(r"\s*(?:to (?:the )?)?([a-z]+(?: [a-z]+)?)\s*(?=$|[.;!\n]|\s-)", after)
         if short is not None and short.group(1).split()[0] in _DIRECTIONS:
             # "roll 3 degrees clockwise - no, counterclockwise": only the direction changes
             word = short.group(1).split()[0]

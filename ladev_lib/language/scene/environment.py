@@ -39,7 +39,7 @@ RANDOM_WORDS = re.compile(r"\b(?:random|randomly|randomized|arbitrary|perturbed|
 
 DARKER = re.compile(
     r"\b(?:darker|dimmer|dim|dimmed|dimly|dark|darken|darkened|lower|lowered|reduce|reduced|decrease|"
-    r"decreased|less|weaker|fainter|gloomy|gloomier|low|shadowy|minus|down|cut|lessen|below|under)\b|-\s*$"
+    r"decreased|less|weaker|fainter|gloomy|gloomier|low|shadowy|minus|down|cut|lessen|below|under|drop|dropped)\b|-\s*$"
 )
 BRIGHTER = re.compile(
     r"\b(?:brighter|bright|brightly|brighten|brightened|increase|increased|raise|raised|more|stronger|"
@@ -158,7 +158,10 @@ def read_camera(clause: str, slots: Mapping[str, tuple[float, ...]]) -> dict[str
             parts[-1] += f" {part}"  # "tilt it slightly downward, 2 degrees": the amount of the motion before
         else:
             parts.append(part)
+    valued = re.search(rf"\b(?:yaw|pitch|roll|dx|dy|dz|x|y|z)\s*[:=]?\s*{NUM}", text) is not None
     for part in parts:
+        if valued and not re.search(r"\d", part):
+            continue  # "rotate the camera: pitch +5, yaw -5": the verb only introduces the values
         if re.search(r"\b(?:dont|do not|not|never|without|no)\s+(?:\w+\s+)?(?:rotat|tilt|pan|roll|yaw|pitch|turn|mov|shift|translat)", part):
             continue  # "don't rotate it"
         if re.search(r"[:=]\s*(?:none|null|no|0|false|unchanged|default)\s*$", part.strip()):

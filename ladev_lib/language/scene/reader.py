@@ -201,6 +201,11 @@ class _Reader:
         for clause in split_clauses(sentence):
             if clauses and re.fullmatch(rf"\s*(?:by\s+|about\s+)?{NUM}\s*(?:cm|mm|degrees?|deg|%)\s*", clause):
                 clauses[-1] += f" {clause}"  # "tilt the camera slightly downward, 2 degrees": that motion's amount
+            elif clauses and re.match(rf"\s*(?:yaw|pitch|roll|dx|dy|dz|x|y|z)\s*[:=]?\s*{NUM}", clause) and (
+                not re.search(r"\d", clauses[-1]) or re.match(r"\s*(?:yaw|pitch|roll|dx|dy|dz|x|y|z)\b", clauses[-1])
+                or re.search(r"\b(?:yaw|pitch|roll|dx|dy|dz|x|y|z)\s*[:=]?\s*[-+]?\d", clauses[-1])
+            ):
+                clauses[-1] += f", {clause}"  # "rotate the camera: pitch +5, yaw -5": the values of that motion
             else:
                 clauses.append(clause)
         for clause in clauses:
@@ -314,7 +319,7 @@ class _Reader:
             return False
         names = self.vocab.name_pattern.pattern
         pair = rf"(?:a|an|the|one|\d+)\s+{names}\s+and\s+(?:a|an|the|one|\d+)\s+{names}"
-        group = rf"(?:^|:\s*|,\s*(?:and|with|plus)\s+|\bwith\s+)(?:also\s+)?{pair}\s+(?:up\s+|over\s+|down\s+|both\s+)?"
+        group = rf"(?:^|:\s*|,\s*(?:and|with|plus)\s+|\bwith\s+)(?:also\s+)?{pair}\s+(?:up\s+|over\s+|down\s+|off\s+|both\s+)?"
         return re.search(rf"{group}(?:at|on|in|to|toward|towards|near|by)\b", self._sentence_text.strip()) is not None
 
     def _objects(self, clause: str, last: _ObjectOp | None) -> _ObjectOp | None:

@@ -95,7 +95,8 @@ _RETRACT = re.compile(
 )
 """A statement that takes the one before back ("no, put it in the cup instead")."""
 PASSIVE = re.compile(
-    r"\b(?:must|should|has\s+to|have\s+to|needs?\s+to|is\s+to|are\s+to|will|shall|is\s+supposed\s+to)\s+be\s+"
+    r"\b(?:(?:must|should|has\s+to|have\s+to|needs?\s+to|is\s+to|are\s+to|will|shall|is\s+supposed\s+to)\s+be|"
+    r"gets?|got|(?:is|are)\s+(?:being|getting))\s+"  # "the apple gets put on the sponge"
     r"(?:put|placed|moved|set|dropped|stacked|picked\s+up|lifted|carried|brought|laid|inserted|transferred|slid)\b",
     re.IGNORECASE,
 )
@@ -107,7 +108,8 @@ END_STATE = re.compile(
     r"(?:episode|trial|run))?|in the end|success(?:\s+(?:means|is when|is that|is defined as|=|:))|the end state is(?: that)?|"
     r"the (?:desired|target|final) (?:state|outcome|result) is(?: that)?|"
     # "what we want at the end is the golf ball sitting on the plate"
-    r"what (?:i|we|you) (?:want|need|expect|would like|'d like|like) (?:to see )?(?:at the end |in the end |afterwards )?is(?: that| for)?)"
+    r"what (?:i|we|you) (?:want|need|expect|would like|'d like|like) (?:to see )?(?:at the end |in the end |afterwards )?is(?: that| for)?|"
+    r"(?:the (?:run|episode|trial|rollout|test) )?(?:ends|should end|must end|finishes|should finish) with)"
     r"\s*[,:]?\s*(?=the\s)",
     re.IGNORECASE,
 )

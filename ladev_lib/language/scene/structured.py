@@ -175,6 +175,11 @@ _BRACKET_KEY = re.compile(rf"[\[<]\s*({_KEY})\s*[\]>]\s*[:=]?\s*", re.IGNORECASE
 
 def as_fields(text: str) -> str:
     """Data-like descriptions rewritten as plain keyed lines; prose unchanged."""
+    # "pick_up: knife", "put_in = pear, bowl": a task key word as the key
+    text = re.sub(r"(?im)^\s*(pick_up|move_near|put_on|put_in)\s*[:=]\s*(.+?)\s*$", r"task: \1(\2)", text)
+    # "tennis ball L, softball R": a side as one capital letter after an object in a list
+    text = re.sub(r"(?<=[a-z])\s+([LR])(?=\s*(?:[,;.|]|$))", lambda m: f" on the {'left' if m.group(1) == 'L' else 'right'}",
+                  text, flags=re.MULTILINE)
     data = _parse(text)
     mapped = _mapping_text(data) if data is not None else None
     if mapped is not None:

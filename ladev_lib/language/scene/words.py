@@ -54,7 +54,7 @@ FILLERS = {
     "obj", "objs", "env", "cam", "named", "fixed", "stuff", "choice", "your", "something", "anything",
     "everything", "selection", "mix", "bunch", "couple", "variety", "assortment",
     "lay", "out", "arrange", "give", "show", "use", "keep", "leave", "fill", "start", "scatter", "get", "see", "try", "hey", "hi", "hello", "thanks", "cheers", "yes", "yeah", "sure",
-    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank", "wait", "oops", "sorry", "typo", "pls", "plz", "thx",
+    "haha", "lol", "sigh", "hmm", "um", "uh", "oh", "ah", "thank", "wait", "oops", "sorry", "typo", "pls", "plz", "thx", "change",
     "replace", "replaced", "swap", "swapped", "instead", "actually", "scratch", "drop", "remove",
 }
 NON_OBJECT_NOUNS = frozenset({
@@ -177,9 +177,18 @@ class Vocabulary:
         return self._cpattern
 
 
+_TENS = {"twenty": 20, "thirty": 30, "forty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90}
+
+
 def _digits(text: str) -> str:
     for pattern, digit in _NUMBER_PHRASES:
         text = re.sub(pattern, digit, text)
+    # "twenty five percent", "thirty-five", "forty": tens and units as one number
+    units = "|".join(k for k, v in _NUMBER_WORDS.items() if 1 <= v <= 9)
+    text = re.sub(
+        rf"\b({'|'.join(_TENS)})(?:[\s-]+({units}))?\b",
+        lambda m: str(_TENS[m.group(1)] + (_NUMBER_WORDS[m.group(2)] if m.group(2) else 0)), text,
+    )
     return re.sub(
         r"\b(" + "|".join(_NUMBER_WORDS) + r")\b", lambda m: str(_NUMBER_WORDS[m.group(1)]), text
     )
@@ -198,7 +207,8 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = t.replace("–", "-").replace("—", "-").replace("−", "-").replace("°", " degrees ")
     t = t.replace("&", " and ").replace("'", "")
     # "a bowl (bowl in the center)", "a mug (the mug goes left)": the bracket says where, not another one
-    t = re.sub(r"\b([a-z]+)\s*\(\s*(?:the\s+|that\s+|this\s+)?\1\b(?:\s+(?:is|goes|sits|stands))?\s*", r"\1 (", t)
+    t = re.sub(r"\b((?:[a-z0-9]+ ){0,2}[a-z0-9]+)\s*\(\s*(?:the\s+|that\s+|this\s+)?\1\b(?:\s+(?:is|goes|sits|stands))?\s*",
+               r"\1 (", t)
     t = re.sub(r"(?m)^\s*\d{1,2}[.)]\s+(?=[a-z])", "", t)  # "5. lights 10% dimmer": a list's numbering
     t = re.sub(r"\b(?:just )?for (?:fun|clutter)\b|\bas (?:a )?(?:joke|gag|clutter|distractors?)\b", " ", t)
     t = re.sub(r"\b(?:um+|uh+|erm|er|like)\b(?=\s)", " ", t)  # hesitations ("like three degrees")
