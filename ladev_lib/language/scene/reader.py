@@ -520,7 +520,7 @@ class _Reader:
                 for obj in self.out.objects[self._sentence_first:]:
                     if obj.position is None:
                         obj.position = dict(position)
-            elif position is not None and self._pair_placed(found):
+            elif position is not None and "x" not in position and self._pair_placed(found):  # not a point
                 self.out.objects[-1].position = dict(position)
             if position is not None:
                 found[-1].position = position
