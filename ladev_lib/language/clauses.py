@@ -72,6 +72,8 @@ class Governed:
     """Completing phrases that are not objects ("the table", "your left")."""
     follows: str | None = None
     """What the relation word comes right after: "bare" (the acted-on phrase) or "governed"."""
+    relative: bool = False
+    """Introduced by a relative clause ("the plate *that is* on the shelf"): it describes the phrase before."""
     qualifier: str | None = None
     """Set by the parser when the relation describes a phrase instead of stating the task:
     "object" ("the bowl *next to the plate*") or "destination" ("the compartment *of the caddy*");
@@ -154,6 +156,9 @@ def split_clauses(tokens: Sequence[Token]) -> list[Clause]:
             flush(tok.text if tok.kind == "CONJ" else intro if not current else ",")
         elif tok.kind == "CONJ" and tok.text == "and" and _gapped_placement(current, tokens, i + 1):
             flush("and")  # "place the block on the right and the can on the left": a second placement
+        elif tok.kind == "WORD" and tok.text in lx.CONDITIONALS and current:
+            flush(None)  # "... if it isn't too much trouble": a condition, a clause of its own
+            current.append(tok)
         else:
             current.append(tok)
     flush(None)
@@ -200,6 +205,10 @@ def _gapped_placement(current: Sequence[Token], tokens: Sequence[Token], i: int)
 
 
 def _action_follows(tokens: Sequence[Token], i: int) -> bool:
+    """A new clause starts here: a verb, a negation, a sequence word, an unlisted verb, or a
+    subordinate clause ("..., if it isn't too much trouble")."""
+    if i < len(tokens) and tokens[i].kind == "WORD" and tokens[i].text in lx.CONDITIONALS:
+        return True
     while i < len(tokens) and (
         tokens[i].kind in ("ADV", "CONJ", "AUX", "MODAL", "PERSON") or tokens[i].text in lx.SKIPPABLE
     ):
@@ -208,10 +217,12 @@ def _action_follows(tokens: Sequence[Token], i: int) -> bool:
 
 
 def _unknown_verb_at(tokens: Sequence[Token], i: int) -> bool:
-    """An unlisted word right before an object phrase, after "and" / "then": "... and sing a song"."""
+    """An unlisted word right before an object phrase, after "and" / "then": "... and sing a song"
+    (not a word that opens a subordinate clause: "if it is ...")."""
     return (
         i + 1 < len(tokens)
         and tokens[i].kind == "WORD"
+        and tokens[i].text not in lx.SUBORDINATORS
         and (
             tokens[i + 1].kind in ("DET", "PRON", "OBJ", "QUANT")
             or (tokens[i + 1].kind == "PERSON" and tokens[i + 1].text in lx.RECIPIENTS)
@@ -253,10 +264,17 @@ class ClauseReader:
         verbs: list[Token] = []
         before: Token | None = None
         last: str | None = None  # what the previous element was: "bare" | "governed" | None
+        relative_to: str | None = None  # what came before a relative pronoun ("the can | that is on ...")
 
-        def close(ahead: Token | None = None) -> None:
+        def fronted(g: Governed | None) -> bool:
+            """The relation opens the clause: "at the end, ...", "into the box the pen goes"."""
+            return g is not None and bool(c.governed) and c.governed[0] is g and not c.bare and not verbs
+
+        def close(ahead: Token | None = None, after: Token | None = None) -> None:
             nonlocal phrase, last, gov
-            if phrase and gov is not None and not gov.refs and not gov.places and _says_when(gov.phrase, phrase, ahead):
+            if phrase and gov is not None and not gov.refs and not gov.places and _says_when(
+                gov.phrase, phrase, ahead, fronted(gov)
+            ):
                 c.governed.remove(gov)  # "at three", "for an hour", "by the end": when, not where
                 c.temporal = True
                 gov, phrase = None, []
@@ -264,9 +282,16 @@ class ClauseReader:
             if phrase:
                 # a free noun phrase needs a noun-phrase position: a determiner, or right after
                 # a verb, a particle or a relation word ("put wine bottle on rack"), or opening a
-                # verbless clause before a relation word ("test tube into the rack, please")
+                # verbless clause before a relation word ("test tube into the rack, please"; "rosin,
+                # in the case"), or opening a clause as the subject of a finite verb ("textbook goes
+                # on the desk", "textbook should go ...")
                 slot = before is not None and (before.kind in ("VERB", "REL", "PART", "CONJ") or before.text == ",")
                 slot = slot or (before is None and ahead is not None and ahead.kind == "REL" and not verbs)
+                slot = slot or (
+                    before is None and not verbs and ahead is not None and ahead.text == ","
+                    and after is not None and after.kind == "REL"
+                )
+                slot = slot or (before is None and ahead is not None and _finite(ahead))
                 refs, places = self._refs_of(phrase, free_ok=slot or any(t.kind in ("DET", "QUANT") for t in phrase))
                 if gov is not None:
                     gov.refs.extend(refs)
@@ -287,30 +312,41 @@ class ClauseReader:
             if j < first:
                 continue
             nxt_text = c.tokens[j + 1].text if j + 1 < len(c.tokens) else ""
-            if tok.text in lx.DESIRE and not (tok.text in _PERFECT and nxt_text not in ("to", "got")):
-                c.desire = True  # "has to be on ..." (not the perfect: "has been sitting out")
+            if tok.text in lx.DESIRE and tok.kind != "ADV" and not (tok.text in _PERFECT and nxt_text not in ("to", "got")):
+                c.desire = True  # "has to be on ..." (not the perfect: "has been sitting out"; not a hedge)
             if tok.kind == "WORD" and (tok.text in lx.DESIRE or tok.text == "to") and any(
                 t.kind in ("OBJ", "WORD") and t.text not in lx.DESIRE for t in phrase
             ):
                 close()  # "the pen needs to be ...": the phrase ends before the desire word
                 continue
+            if tok.kind == "DET" and fronted(gov) and phrase and phrase[0].kind == "DET" and any(
+                t.kind == "OBJ" or (t.kind == "WORD" and t.text not in lx.NUMBER_WORDS) for t in phrase
+            ):
+                close()  # "into the box *the* pen goes": a determiner after a determined noun opens the
+                gov = None  # next phrase, the subject, after the fronted relation's own phrase
             if tok.kind in ("OBJ", "PRON", "DET", "QUANT", "WORD"):
                 phrase.append(tok)
                 continue
-            close(tok)
+            close(tok, c.tokens[j + 1] if j + 1 < len(c.tokens) else None)
             if tok.kind not in ("ADV",):
                 before = tok
             if tok.kind == "REL":
                 back = j - 1
                 while back > 0 and c.tokens[back].kind == "ADV":
                     back -= 1
+                relative = False
+                if back > 1 and c.tokens[back].kind == "BE" and c.tokens[back - 1].kind == "RELPRON":
+                    back -= 2  # "the can *that is* on the plate": the relation describes the phrase before
+                    relative = True
                 prev_kind = c.tokens[back].kind if back >= 0 and j > 0 else None
-                follows = last if prev_kind in ("OBJ", "WORD", "PRON") else None
+                follows = (relative_to if relative else last) if prev_kind in ("OBJ", "WORD", "PRON") else None
                 if prev_kind == "REL":
                     follows = "governed"  # "from between the plate and ..."
-                gov = Governed(tok.relation or "other", tok.text, tok.directional, follows=follows)
+                gov = Governed(tok.relation or "other", tok.text, tok.directional, follows=follows, relative=relative)
                 c.governed.append(gov)
                 last = "governed"
+            elif tok.kind == "RELPRON":
+                relative_to = last
             elif tok.kind in ("VERB", "BE", "MODAL", "NEG"):
                 gov = None
                 last = None
@@ -341,7 +377,8 @@ class ClauseReader:
         """Relation words whose placement depends on the verb and the noun after them.
 
         "move the mug *to the tray*": carried to a surface, it ends on it ("in" for a
-        receptacle: "bring the apple to the basket"); "to" anything else stays "near"
+        receptacle: "bring the apple to the basket"); so with a putting verb, the learner's
+        "to" for "in" / "on" ("put the jam to the cupboard"); "to" anything else stays "near"
         ("shift the lamp over to the monitor"). "put the bowl *above* the cabinet": a
         putting verb puts it on.
         """
@@ -350,7 +387,7 @@ class ClauseReader:
         lemma = c.verb.lemma
         for g in c.governed:
             words = tuple(g.phrase.split())
-            if lemma in lx.CARRY_VERBS and g.relation == "near" and words in lx.CARRY_TO:
+            if (lemma in lx.CARRY_VERBS or lemma in lx.PUT_VERBS) and g.relation == "near" and words in lx.CARRY_TO:
                 kind = self.receptacle_kind(g.refs[0]) if g.refs else None
                 if kind is not None:
                     g.relation = kind
@@ -489,6 +526,8 @@ class ClauseReader:
             return "manner"  # "don't drop it": how to do the task, not which task
         if c.negation and kind in ("topic", "describe", "empty", "preamble"):
             return "manner"  # "so it doesn't fall": negates no action of the four tasks
+        if kind in ("topic", "describe", "empty") and c.verb is None and _imperative_be(c.tokens):
+            return "manner"  # "be a dear and ...", "be careful": what the robot is to be; its noun is no object
         return kind
 
     @staticmethod
@@ -576,20 +615,39 @@ _PERFECT = frozenset({"has", "have", "had"})
 """Desire words only before "to" ("has to be"); before a participle they make the perfect."""
 
 
-def _says_when(relation: str, phrase: Sequence[Token], ahead: Token | None) -> bool:
+def _says_when(relation: str, phrase: Sequence[Token], ahead: Token | None, fronted: bool = False) -> bool:
     """A relation completed by a time, not a place: "at three", "for an hour", "in a minute",
-    "by the end" (not "at the end of the shelf")."""
+    "for about an hour", "by the end", "at the end, ..." opening a sentence (not "at the end of
+    the shelf")."""
     if relation not in lx.TIME_RELATIONS or any(t.kind == "OBJ" for t in phrase):
         return False
     words = [w for t in phrase for w in t.text.split()]
-    counted = [w for w in words if w not in lx.NUMBER_WORDS and not w.isdigit()]
+    counted = [w for w in words if w not in lx.NUMBER_WORDS and not w.isdigit() and w not in lx.APPROXIMATORS]
     if not counted:
         clock = "the" not in words and any(w.isdigit() or w in lx.NUMBER_WORDS - {"a", "an", "of"} for w in words)
         return relation == "at" and clock  # "at three"
     if all(w in lx.TIME_WORDS for w in counted):
         return True
     of_follows = ahead is not None and ahead.kind == "REL" and ahead.text == "of"
-    return relation in ("by", "in", "until", "till") and counted == [counted[-1]] and counted[-1] in lx.TIME_BOUNDARIES and not of_follows
+    set_off = relation == "at" and fronted and ahead is not None and ahead.text == ","  # "at the end, ..."
+    return (
+        (relation in ("by", "in", "until", "till") or set_off)
+        and counted == [counted[-1]] and counted[-1] in lx.TIME_BOUNDARIES and not of_follows
+    )
+
+
+def _imperative_be(tokens: Sequence[Token]) -> bool:
+    """A clause that opens with the imperative "be" ("be a dear", "be quick"): its complement
+    says how the addressee is to be (a predicate noun, never an object acted on)."""
+    first = next((t for t in tokens if t.kind not in ("ADV", "PUNCT")), None)
+    return first is not None and first.kind == "BE" and first.text == "be" and not any(t.kind == "VERB" for t in tokens)
+
+
+def _finite(tok: Token) -> bool:
+    """A finite verb, a modal or a form of "be": what follows a clause's subject ("the pen *goes* ...")."""
+    if tok.kind in ("MODAL", "BE"):
+        return True
+    return tok.kind == "VERB" and tok.lemma is not None and tok.text != tok.lemma and not tok.text.endswith("ing")
 
 
 def _coordinated(text: str) -> Ref:
@@ -602,14 +660,28 @@ def _coordinated(text: str) -> Ref:
 def _declarative(tokens: Sequence[Token]) -> str | None:
     """A clause that opens with a subject and a finite verb: "I'm wrapping a present", "the milk
     has been sitting out", "it's supposed to rain" ("be"), "my train leaves at five" ("verb": a
-    form that is no imperative); not addressed to the robot as a command."""
+    form that is no imperative), "my son left his shoes in the hall", "the concert went well",
+    "everyone was clapping" ("past": what happened); not addressed to the robot as a command.
+    A greeting's addressee is no subject ("hello robot, today is a busy day"); a time noun may be
+    one ("today is ...")."""
     k = 0
-    while k < len(tokens) and (tokens[k].kind in ("ADV", "CONJ", "PUNCT") or tokens[k].text in ("so", "well", "anyway")):
-        k += 1
+    time_subject = False
+    while k < len(tokens):
+        tok = tokens[k]
+        if tok.kind in ("ADV", "CONJ", "PUNCT") or tok.text in ("so", "well", "anyway"):
+            time_subject = tok.text in _TIME_NOUNS
+            k += 1
+        elif k > 0 and tokens[k - 1].kind == "ADV" and tok.text in lx.VOCATIVES and k + 1 < len(tokens) and tokens[k + 1].text == ",":
+            time_subject = False
+            k += 2  # "hello robot, ...": whom the greeting addresses
+        else:
+            break
     if k >= len(tokens):
         return None
     first = tokens[k]
-    if first.kind == "PERSON":
+    if time_subject and _finite(first):
+        pass  # "today is a busy day": the time noun is the subject
+    elif first.kind == "PERSON":
         if first.text in ("you", "yourself"):
             return None
         k += 1
@@ -618,6 +690,10 @@ def _declarative(tokens: Sequence[Token]) -> str | None:
     else:
         start = k
         while k < len(tokens) and tokens[k].kind in ("DET", "QUANT", "OBJ", "WORD") and tokens[k].text not in _PERFECT:
+            if k > start and tokens[k].kind == "WORD" and _past_word(tokens, k) and any(
+                t.kind in ("OBJ", "WORD") for t in tokens[start:k]
+            ):
+                return "past"  # "my daughter *left* her toys out"
             k += 1
         if k == start or not any(t.kind in ("OBJ", "WORD") for t in tokens[start:k]):
             return None
@@ -625,13 +701,27 @@ def _declarative(tokens: Sequence[Token]) -> str | None:
         return None
     finite = tokens[k]
     if finite.kind in ("BE", "AUX", "MODAL") or finite.text in _PERFECT:
-        return "be"
-    if finite.kind == "VERB" and finite.lemma is not None and finite.text != finite.lemma and not finite.text.endswith("ing"):
-        return "verb"
+        return "past" if finite.text in lx.PAST_FORMS else "be"
+    if _finite(finite) and finite.kind == "VERB":
+        return "past" if finite.text in lx.PAST_FORMS or finite.text.endswith("ed") else "verb"
     return None
 
 
-_FURNITURE = frozenset({"shelf", "desk", "counter", "countertop"})
+_TIME_NOUNS = frozenset({"today", "tomorrow", "tonight", "yesterday"})
+
+
+def _past_word(tokens: Sequence[Token], k: int) -> bool:
+    """An unlisted word after a subject that is a verb's past form: an irregular one ("left",
+    "came"), or a regular "-ed" form that no noun follows ("my sister painted the fence";
+    not "the blue painted cup")."""
+    w = tokens[k].text
+    if w in lx.PAST_FORMS:
+        return True
+    nxt = tokens[k + 1] if k + 1 < len(tokens) else None
+    return w.endswith("ed") and len(w) > 4 and w.isalpha() and (nxt is None or nxt.kind not in ("OBJ", "WORD"))
+
+
+_FURNITURE = frozenset({"shelf", "desk", "counter", "countertop", "table"})
 """Place nouns that are objects of their own in open-vocabulary scenes ("put the mug on the shelf")."""
 _SURFACE_PARTS = frozenset({"top", "surface", "tabletop"})
 """Head nouns that name a part of the object before them ("the cabinet top")."""

@@ -219,6 +219,14 @@ class Grounder:
             by_group = any(
                 self.nouns.is_a(phrase.text, n) or (general and self.nouns.is_a(n, kind)) for n in obj.names
             ) or (general and any(self.nouns.is_a(c, kind) for c in _contents(obj)))
+            # a plain compound name WordNet does not know is a kind of its head noun ("kibble bag": a
+            # bag), and a more specific word for that kind names it too ("the sack of dog food": a sack
+            # is a bag); a catalog name stays its own object
+            by_group = by_group or (
+                obj.catalog_id is None
+                and phrase.object_id is None
+                and any(self.nouns.is_a(phrase.text, h) for h in _unknown_compound_heads(obj, self.nouns))
+            )
         if head not in heads and not by_group and head not in lx.GENERIC_HEADS:
             if phrase.object_id is None or phrase.object_id == obj.catalog_id:
                 return False
@@ -369,6 +377,11 @@ _COLOURS = frozenset(lx.COLOR_WORDS) - {"light", "dark"}
 _MATTER = ("material", "substance", "solid")
 """WordNet kinds of what a thing is made of or holds ("glass", "plastic", "water")."""
 _COLOUR_ALIASES = {"violet": "purple", "gray": "grey"}
+
+
+def _unknown_compound_heads(obj: SceneObject, nouns: Nouns) -> list[str]:
+    """The head nouns of an object's compound names that WordNet does not know ("bag" of "kibble bag")."""
+    return [n.split()[-1] for n in obj.names if len(n.split()) > 1 and not nouns.senses(n)]
 
 
 def _contents(obj: SceneObject) -> list[str]:

@@ -193,9 +193,11 @@ SURFACE_HEADS = frozenset(
 )
 """Head nouns of things an object is put on: carried "to" one, it ends on it."""
 CONTAINER_HEADS = frozenset(
-    ["basket", "bin", "bowl", "drawer", "caddy", "compartment", "slot", "section", "cubby", "sink", "pot", "bucket", "crate", "tub", "jar", "mug", "cup", "holder", "organizer", "fridge", "refrigerator", "microwave", "oven", "dishwasher"]
+    ["basket", "bin", "bowl", "drawer", "caddy", "compartment", "slot", "section", "cubby", "sink", "pot", "bucket", "crate", "tub", "jar", "mug", "cup", "holder", "organizer", "fridge", "refrigerator", "microwave", "oven", "dishwasher",
+     "cupboard", "cabinet", "closet", "locker", "wardrobe"]
 )
-"""Head nouns of things an object is put in: carried "to" one, it ends inside it."""
+"""Head nouns of things an object is put in: carried "to" one, it ends inside it (storage furniture
+too: "put the jam to the cupboard", learner English for "in")."""
 PUT_VERBS = frozenset({"put", "place", "set", "lay", "rest", "position", "stack", "sit", "stand", "park", "deposit", "plop"})
 """Verbs (lemmas) of putting down: "put X above Y" puts X on Y."""
 ABOVE_AS_ON = frozenset({("above",)})
@@ -294,15 +296,43 @@ DISCOURSE_TAGS = frozenset(
     ["k", "kk", "ok", "okay", "yeah", "yes", "yep", "yup", "right", "alright", "eh", "huh", "no", "thanks", "cheers", "cool", "mate", "buddy", "pal"]
 )
 """Words that, alone after a comma at the end of a sentence, ask for assent ("..., k?", "..., ok?")."""
+INTERJECTIONS = frozenset(
+    ["ugh", "sigh", "phew", "whew", "oops", "argh", "meh", "yikes", "wow", "jeez", "geez", "gosh", "alas", "ah", "oh",
+     "aw", "ow", "ouch", "whoa", "welp", "yay", "hooray"]
+)
+"""Words that only voice a feeling: set off by a comma from the rest of a sentence ("..., sigh.",
+"ugh, ...") they are no noun."""
 POSTURE_PARTICIPLES = frozenset(["sitting", "resting", "lying", "laying", "standing"])
 """Posture participles: before a relation they say how a thing lies ("should end up *lying* on the bench")."""
 RELATIVE_PRONOUNS = frozenset({"that", "which", "who"})
 CONTAINER_NOUNS = frozenset(
-    {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair", "tube"}
+    {"can", "tin", "bottle", "box", "jar", "carton", "pack", "packet", "bag", "piece", "slice", "pair", "tube",
+     "sack", "pouch", "tub", "jug", "crate", "canister", "sachet"}
 )
 """Nouns in "a can of X": X names the object."""
 MEASURE_NOUNS = frozenset({"piece", "slice", "stick", "bar", "roll", "sheet", "bunch", "loaf", "head", "clove", "lump", "chunk"})
 """Nouns in "a stick of chalk": the thing is X itself (a free phrase's head is X)."""
+PAST_FORMS = frozenset(
+    ["went", "came", "left", "said", "told", "thought", "knew", "made", "gave", "took", "ran", "sat", "stood", "kept",
+     "heard", "began", "became", "forgot", "wrote", "spoke", "woke", "slept", "ate", "drank", "fell", "won", "lost",
+     "met", "paid", "sent", "spent", "built", "caught", "taught", "fought", "sold", "bought", "brought", "found", "got",
+     "meant", "grew", "drew", "flew", "threw", "blew", "rode", "drove", "chose", "froze", "hid", "shook", "broke",
+     "stole", "swam", "sang", "rang", "understood", "forgave", "spilt", "burnt", "learnt", "held", "laid", "slid",
+     "stuck", "spun", "bit", "was", "were", "had", "did"]
+)
+"""Irregular past-tense forms: after a subject they make a statement about what happened ("my son *left*
+his shoes in the hall"), never a command."""
+UNCHANGED_PARTICIPLES = frozenset(["put", "set", "cut", "hit", "let", "shut", "spread", "cast", "quit", "hurt", "split"])
+"""Verbs whose past participle is their base form ("should be *put* on the plate")."""
+SUBORDINATORS = frozenset(["if", "unless", "when", "whenever", "while", "because", "since", "although", "though", "whether"])
+"""Words that open a subordinate clause ("if it isn't too much trouble"): never a verb."""
+CONDITIONALS = frozenset(["if", "unless"])
+"""Subordinators of a condition: the clause they open is a clause of its own ("pick up the fork if it
+isn't too much trouble": the negation is the condition's)."""
+VOCATIVES = frozenset(["robot", "bot", "buddy", "pal", "mate", "friend", "everyone", "folks", "there"])
+"""Nouns that address the robot after a greeting ("hello robot, ..."), never a subject."""
+APPROXIMATORS = frozenset(["like", "about", "around", "almost", "nearly", "roughly", "maybe", "approximately", "just", "over"])
+"""Words that hedge an amount ("for *like* five minutes", "for about an hour")."""
 RECIPIENTS = frozenset({"me", "us", "him", "her"})
 """After an action verb these make it a hand-over ("bring me the can")."""
 QUANTIFIERS = frozenset(

@@ -139,10 +139,13 @@ def _mark_qualifiers(act: _Action) -> None:
     if any(g.relation in PLACEMENT and g.refs for g in rest):
         for g in potential:
             g.qualifier = "object"
-    # "of" right after the destination phrase: part of it ("the back compartment of the caddy")
+    # "of" right after the destination phrase: part of it ("the back compartment of the caddy"); a
+    # relative clause after it describes it ("on the plate *that is on the shelf*")
     for c in act.clauses:
         for prev, g in zip(c.governed, c.governed[1:], strict=False):
-            if g.phrase == "of" and g.follows == "governed" and prev.qualifier is None and prev.relation in PLACEMENT:
+            after_destination = g.follows == "governed" and prev.qualifier is None and prev.relation in PLACEMENT
+            describes = g.phrase == "of" or (g.relative and g.qualifier is None and bool(prev.refs))
+            if after_destination and describes:
                 g.qualifier = "destination"
             elif g.phrase == "of" and g.follows == "governed" and prev.qualifier == "object":
                 g.qualifier = "object"
@@ -207,11 +210,19 @@ def _mark_context(clauses: list[Clause]) -> None:
     if not any(c.kind in _ACTIONS for c in clauses):
         return
     for c in clauses:
-        stated = c.declarative == "verb" and c.kind in ("place_nodest", "other", "preamble", "release")
+        stated = c.declarative in ("verb", "past") and c.kind in ("place_nodest", "other", "preamble", "release")
+        # "my son left his socks on the rug": what happened, in a verb the lexicon does not list
+        stated = stated or (c.declarative == "past" and c.kind == "place" and c.verb is None)
+        # "the door is closed", "I'm wrapping a present": a state or an event in progress, no task verb
+        stated = stated or (
+            c.declarative == "be" and c.kind == "other" and c.verb is not None and c.verb.text != c.verb.lemma
+        )
         if c.kind not in ("describe", "topic", "empty") and not stated or c.negation or c.intro == "result":
             continue
         wish = c.desire and any(not r.pronoun for r in c.bare)
-        adds = any(t.text in _ADDITIVE for t in c.tokens)  # "the pear is next", "the pear too"
+        # "the pear is next", "the pear too"; in a statement of the past ("my son left his shoes out
+        # again") such a word says what happened, not what to do
+        adds = c.declarative != "past" and any(t.text in _ADDITIVE for t in c.tokens)
         if (c.declarative or c.temporal) and not wish and not adds:
             c.kind = "context"
 
@@ -298,6 +309,9 @@ def _merge_pair(a: _Action, b: _Action) -> _Action | None:
     lowers = b.kind == "place_nodest" and b.clauses[-1].verb is not None and b.clauses[-1].verb.lemma in _SET_DOWN
     if a.kind == "place" and lowers and any(g.refs and g.phrase in _OVER for g in a.governed()):
         return _Action("place", both)  # "move it above the board, lower it ...": a step of setting it down there
+    there = any(t.text in ("there", "here") for c in b.clauses for t in c.tokens)
+    if a.kind == "place" and lowers and there and any(g.refs and g.relation in PLACEMENT for g in a.governed()):
+        return _Action("place", both)  # "bring it over by the cooler and put it down there": where it was brought
     if a.kind == "place" and b.kind == "place" and _over_then_onto(a, b):
         return _Action("place", both)  # "move it above the board ... release it onto the board"
     rests_there = b.kind == "place_nodest" and all(
@@ -568,6 +582,15 @@ class _Composer:
         in_main = {id(c) for c in main.clauses} if main else set()
         excluded = {id(c) for c in negated}
         described = {id(r) for c in (main.clauses if main else []) for g in c.governed if g.qualifier for r in g.refs}
+        # "there's a can on the table. pick it up", "the banana on the table, lift it": a description of
+        # the object acted on; its landmarks say where that object is
+        described |= {
+            id(r)
+            for c in self.clauses
+            if c.kind in ("describe", "topic") and source is not None and any(b.object_id == source for b in c.bare)
+            for g in c.governed
+            for r in g.refs
+        }
         for c in self.clauses:
             if c.kind in ("manner", "context") or id(c) in excluded:
                 continue

@@ -299,6 +299,13 @@ def _tag_word(
         return Token("ADV", w)  # "should end up lying on the bench", "has been sitting out all day": how it lies
     if w in lx.DISCOURSE_TAGS and prev is not None and prev.text == "," and _ends_sentence(words, i + 1):
         return Token("ADV", w)  # a tag asking for assent: "..., k?", "..., ok?"
+    set_off = (prev is not None and prev.text == "," and _ends_sentence(words, i + 1)) or (
+        (prev is None or prev.text in _SENTENCE_END) and i + 1 < len(words) and words[i + 1] in _PUNCT
+    )
+    if w in lx.INTERJECTIONS and set_off:
+        return Token("ADV", w)  # "..., sigh.", "ugh, ...": a feeling voiced, no noun
+    if w == "like" and _hedges_amount(prev, words, i):
+        return Token("ADV", w)  # "for like five minutes": a hedge on an amount, no wish
     describes = (after_det or (prev is not None and prev.kind == "REL")) and _starts_phrase(words, i + 1, index)
     if w in lx.PARTICLES and not describes and not (after_det and w in lx.OPPOSITE_POSITIONS):
         return Token("PART", w)  # after a determiner or a relation word it describes the noun: "(the) back slot"
@@ -338,8 +345,50 @@ def _tag_word(
         return Token("MODAL", w)
     if w in lx.VERBS and not after_det:
         cls, lemma = lx.VERBS[w]
+        if cls == "other" and w == lemma and w not in lx.UNCHANGED_PARTICIPLES and _after_copula(words, i):
+            return Token("WORD", w)  # "the door is open", "the jar is still empty": an adjective, not a verb
+        if w == lemma and (prev is None or prev.kind == "PUNCT") and _compound_subject(words, i, index):
+            return Token("WORD", w)  # "shift change is at noon": the first noun of the subject, no command
         return Token("VERB", w, verb_class=cls, lemma=lemma)
     return Token("WORD", w)
+
+
+def _hedges_amount(prev: Token | None, words: list[str], i: int) -> bool:
+    """ "like" before a number, not after a subject or a modal: "it took *like* ten minutes"."""
+    nxt = words[i + 1] if i + 1 < len(words) else ""
+    counts = nxt.isdigit() or nxt in lx.NUMBER_WORDS - {"a", "an", "the", "of"} or nxt in lx.QUANTIFIERS
+    return counts and prev is not None and prev.kind not in ("MODAL", "PERSON", "AUX", "NEG")
+
+
+def _after_copula(words: list[str], i: int) -> bool:
+    """Right after a form of "be", an adverb between at most: "is open", "is still open"."""
+    if i >= 1 and words[i - 1] in lx.COPULAS:
+        return True
+    return i >= 2 and words[i - 2] in lx.COPULAS and is_adverb(words[i - 1])
+
+
+def _compound_subject(words: list[str], i: int, index: NameIndex) -> bool:
+    """A verb's base form opening a sentence before a bare noun and a finite "be", a modal or
+    "has": the two nouns are the subject ("shift change is in ten minutes", "play time should
+    ..."), not a command and its object."""
+    if i + 2 >= len(words):
+        return False
+    nxt, after = words[i + 1], words[i + 2]
+    noun = (
+        nxt.isalpha()
+        and not any(nxt in table for table in _NOT_SUBJECT_NOUNS)
+        and not is_adverb(nxt)
+        and index.match_at(words, i + 1) is None
+        and _relation_at(words, i + 1, index) is None
+    )
+    return noun and (after in lx.COPULAS or after in _FINITE_AFTER_SUBJECT)
+
+
+_NOT_SUBJECT_NOUNS = (
+    lx.DETERMINERS, lx.PRONOUNS, lx.QUANTIFIERS, lx.PERSONS, lx.VERBS, lx.PARTICLES, lx.COPULAS, lx.MODALS,
+    lx.CONJUNCTIONS, lx.NEGATIONS, lx.AUXILIARIES,
+)
+_FINITE_AFTER_SUBJECT = frozenset({"will", "would", "should", "must", "might", "may", "has", "had"})
 
 
 _TIME_ADVERBS = frozenset({"tomorrow", "today", "tonight", "yesterday", "now", "then", "later", "soon"})
