@@ -147,11 +147,16 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
     # "... 3 cm forward. Hmm, make it 4.": a new amount said as the next sentence corrects the last one
     out = re.sub(
         r"(?<![.])[.!?]\s+((?:hmm+|no+|wait|sorry|actually|oops)\b[,!.]?\s*(?:(?:no+|sorry)\b[,!.]?\s*)?"
-        r"(?:[a-z']+[,!.]?\s+){0,4}?"  # "hmm, that's too much, make it 50%"
-        r"(?:(?:make (?:it|that)|change (?:it|that) to|i meant?|just|go with|by)\s+(?:-?\d|a (?:quarter|third|fifth|tenth)|half)|(?:"
-        + "|".join(_DIRECTIONS) + r")\b\s*(?=$|[.;!\n])))",
+        # "hmm, that's too much, make it 50%": a few words of the same sentence before the new amount
+        r"(?:(?:[a-z']+,?\s+){0,4}?(?:make (?:it|that)|change (?:it|that) to|i meant?|just|go with|by)\s+"
+        r"(?:-?\d|a (?:quarter|third|fifth|tenth)|half)"
+        r"|-?\d+(?:\.\d+)?\s*(?:%|cm|mm|degrees?|deg)\b"  # "3 cm forward. Hmm, no, 6 cm forward."
+        r"|(?:" + "|".join(_DIRECTIONS) + r")\b\s*(?=$|[.;!\n])))",
         r" - \1", text,
     )
+    # "dim it by a third? Let's just say 30%.": a new amount offered in the next sentence
+    out = re.sub(r"(?<![.])[.!?]\s+(?:ok(?:ay)?,?\s+)?lets (?:just )?(?:say|make it|call it|go with)\s+(-?\d+(?:\.\d+)?\s*%?)",
+                 r" - actually, make it \1", out)
     # "... 30% darker. And 30% is too much, say 20%.": the amount restated in the next sentence
     out = re.sub(
         r"(?<![.])[.!?]\s+(?:and\s+)?(?:-?\d+(?:\.\d+)?\s*%?\s+)?(?:is|was|seems|thats|that is|its)\s+(?:way\s+)?too\s+"
@@ -188,9 +193,9 @@ def apply_corrections(text: str, vocab: Vocabulary) -> tuple[str, list[str], lis
         after = out[m.end():]
         fraction = r"a (?:quarter|third|fifth|tenth)|(?:a )?half"
         amount = re.match(
-            rf"\s*(?:by\s+)?(-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?|{fraction})\s*(?=$|[.;,!?\n])", after
+            rf"\s*(?:by\s+)?(-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg|x)?|{fraction})\s*(?=$|[.;,!?\n])", after
         )
-        said_amounts = list(re.finditer(rf"-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg)?|\b(?:{fraction})\b", taken))
+        said_amounts = list(re.finditer(rf"-?\d+(?:\.\d+)?\s*(?:%|percent|cm|mm|degrees?|deg|x\b)?|\b(?:{fraction})\b", taken))
         if amount is not None and said_amounts:
             # "lights 20% darker, actually make it 25%": only the amount changes
             old = said_amounts[-1]

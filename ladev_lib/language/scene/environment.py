@@ -85,7 +85,7 @@ def read_lighting(clause: str) -> dict[str, Any] | None:
     text = re.sub(r"\b(?:a )?quarter\b", " 25% ", text)
     text = re.sub(r"\b(?:a )?fifth\b", " 20% ", text)
     text = re.sub(r"\b(?:a )?third\b", " 33% ", text)
-    if re.search(r"\bhalf as (?:bright|light|strong|intense)\b", text):
+    if re.search(r"\bhalf as (?:bright|light|strong|intense)\b|\bhalve(?:d)?\s+(?:the\s+)?(?:brightness|light|lights|lighting|it)\b", text):
         return {"op": "set_lighting", "intensity_delta": -0.5}
     if re.search(r"\b(?:twice|double) as (?:bright|light|strong|intense)\b|\bdoubled?\b", text):
         return {"op": "set_lighting", "intensity_delta": 1.0}

@@ -108,7 +108,8 @@ END_STATE = re.compile(
     r"(?:episode|trial|run))?|in the end|success(?:\s+(?:means|is when|is that|is defined as|=|:))|the end state is(?: that)?|"
     r"the (?:desired|target|final) (?:state|outcome|result) is(?: that)?|"
     # "what we want at the end is the golf ball sitting on the plate"
-    r"what (?:i|we|you) (?:want|need|expect|would like|'d like|like) (?:to see )?(?:at the end |in the end |afterwards )?is(?: that| for)?|"
+    r"what (?:i|we|you) (?:actually |really |just |ultimately )?(?:want|need|expect|would like|'d like|like) (?:to see )?"
+    r"(?:at the end |in the end |afterwards )?is(?: that| for)?|"
     r"(?:the (?:run|episode|trial|rollout|test) )?(?:ends|should end|must end|finishes|should finish) with)"
     r"\s*[,:]?\s*(?=the\s)",
     re.IGNORECASE,
@@ -530,8 +531,10 @@ def _statements(text: str, reader: Callable[[str], Frame], names: Mapping[str, s
         goes = _GOES.match(tail)
         if (
             goes is not None and IMPERATIVE.match(tail) is None
-            and re.match(r"\s*(?:the|that|this)\s", goes.group("x"), re.IGNORECASE)
-            and not re.match(r"(?:near|next|beside)", goes.group("rel"), re.IGNORECASE)
+            # "the carrot goes ...", "one of the balls goes ...", "one plum should go ..."
+            and re.match(r"\s*(?:the|that|this|one of the|one)\s", goes.group("x"), re.IGNORECASE)
+            and (not re.match(r"(?:near|next|beside)", goes.group("rel"), re.IGNORECASE)
+                 or re.search(r"\bend\s+up\b", tail, re.IGNORECASE))  # "goes near" may be a layout; "ends up near" is not
             and not re.search(r",|;|\band\b", goes.group("y"))
         ):
             # "The carrot goes on the red plate.": an end state for an object named before is the task

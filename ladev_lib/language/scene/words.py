@@ -213,6 +213,10 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = re.sub(r"\b(?:just )?for (?:fun|clutter)\b|\bas (?:a )?(?:joke|gag|clutter|distractors?)\b", " ", t)
     t = re.sub(r"\b(?:um+|uh+|erm|er|like)\b(?=\s)", " ", t)  # hesitations ("like three degrees")
     t = re.sub(r"\ba handful of\b", " some ", t)
+    # "half a centimetre", "more close", "more far": said the long way
+    t = re.sub(r"\bhalf an? (cm|centimet(?:er|re)|mm|millimet(?:er|re)|degree|inch)\b", r"0.5 \1", t)
+    t = re.sub(r"\bmore close\b", "closer", t)
+    t = re.sub(r"\bmore far\b", "farther", t)
     t = re.sub(r"\b(near|close|next) of\b", lambda m: "next to" if m.group(1) == "next" else m.group(1), t)  # "near of the plate"
     # "on the left of the table", "at the back side of the table": a region of the table, not a relation
     t = re.sub(r"\b(?:(?:on|at|to|in|toward|towards)\s+)?the\s+(left|right|front|back|rear|far|near|middle|center|centre)"
