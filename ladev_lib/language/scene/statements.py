@@ -268,6 +268,10 @@ _CALL = re.compile(
 )
 
 
+_AS_WORDS = {"move_near": "move {} near {}", "put_on": "put {} on {}", "put_in": "put {} in {}"}
+"""A two-object task's key word said as a command."""
+
+
 def _call(text: str) -> str:
     """'put_on(banana, red plate)' / '{type: put_on, object: banana, target: red plate}' -> 'put banana on red plate'."""
     d = _TASK_DICT.match(text)
@@ -279,8 +283,7 @@ def _call(text: str) -> str:
     task, src, tgt = m.group("task").lower(), m.group("src"), m.group("tgt")
     if task == "pick_up" or tgt is None:
         return f"pick up {src}"
-    words = {"move_near": "move {} near {}", "put_on": "put {} on {}", "put_in": "put {} in {}"}
-    return words[task].format(src, tgt) + text[m.end():]
+    return _AS_WORDS[task].format(src, tgt) + text[m.end():]
 
 
 _BARE_ARROW = re.compile(
@@ -352,7 +355,7 @@ def _keyword_frame(text: str, reader: Callable[[str], Frame]) -> Frame | None:
     m = _KEYWORD_TASK.match(text)
     if m is None:
         return None
-    pattern = {"move_near": "move {} near {}", "put_on": "put {} on {}", "put_in": "put {} in {}"}[m.group("task").lower()]
+    pattern = _AS_WORDS[m.group("task").lower()]
     said = re.split(r"\s*(?:->|→|=>|,)\s*", m.group("rest"))
     if len(said) == 2:  # "put_on carrot->sponge"
         frames = [reader(pattern.format(*said))]
@@ -360,8 +363,7 @@ def _keyword_frame(text: str, reader: Callable[[str], Frame]) -> Frame | None:
         words = m.group("rest").split()
         frames = [reader(pattern.format(" ".join(words[:k]), " ".join(words[k:]))) for k in range(1, len(words))]
     frames = [f for f in frames if f.task in TASKS and f.object is not None and f.destination is not None and f.ok]
-    grounded = [f for f in frames if f.object is not None and f.object.object_id and f.destination is not None
-                and f.destination.object_id]
+    grounded = [f for f in frames if f.object and f.object.object_id and f.destination and f.destination.object_id]
     best = grounded or frames
     return best[0] if best else None
 
