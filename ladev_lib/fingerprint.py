@@ -29,7 +29,9 @@ REPO_ROOT = PACKAGE_ROOT.parent
 FINGERPRINT_VERSION = "fingerprint/v1"
 """Bumped when the way files are found or hashed changes."""
 
-DATA_SUFFIXES: frozenset[str] = frozenset({".yaml", ".yml", ".json", ".csv", ".txt", ".jinja", ".md"})
+DATA_SUFFIXES: frozenset[str] = frozenset(
+    {".yaml", ".yml", ".json", ".csv", ".txt", ".jinja", ".md", ".safetensors"}
+)
 """Files beside a module that count as its data."""
 
 

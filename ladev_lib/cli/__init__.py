@@ -23,6 +23,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "compile": ("ladev_lib.cli.compile", "Compile a JSONL file of scene descriptions into specs."),
     "paraphrase": ("ladev_lib.cli.paraphrase", "Paraphrase an instruction and validate each candidate."),
     "validate-paraphrases": ("ladev_lib.cli.validate_paraphrases", "Validate a CSV of (original, candidate) pairs."),
+    "train-reader": ("ladev_lib.cli.train_reader", "Train the reader's span tagger on annotated descriptions."),
     "serve-policy": ("ladev_lib.cli.serve_policy", "Serve a policy over the openpi websocket protocol."),
     "study": ("ladev_lib.cli.study", "Run the whole pipeline for a configuration; sweep with -m (Hydra)."),
     "summary": ("ladev_lib.cli.summary", "Print a study's report location and headline numbers."),

@@ -56,6 +56,11 @@ class CompileConfig(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
+    reader: Literal["tagged", "rules"] = Field(
+        default="tagged",
+        description="How the offline backend reads a description: tagged (the learned span tagger marks the "
+        "phrases, the value rules read them) or rules (the rule reader alone). Other backends ignore it.",
+    )
     min_gap_m: float = Field(default=0.02, ge=0, le=0.2, description="Minimum gap between objects.")
     match_threshold: float = Field(
         default=0.75, ge=0, le=1.01,

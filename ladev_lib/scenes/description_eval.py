@@ -387,18 +387,20 @@ def scene_description_section(
     rows_path: Path,
     conf_dir: Path,
     baseline: dict[str, Any] | Sequence[dict[str, Any]] | None = None,
+    systems: Sequence[tuple[str, Sequence[str]]] = (("LADEV", ()),),
 ) -> str:
-    """The scene-description part of ``reports/language_eval.md``: LADEV (and stored figures) per field.
+    """The scene-description part of ``reports/language_eval.md``: stored figures, then each system per field.
 
     ``baseline``: one or more stored summaries (``label``, ``scene_exact``, ``per_field``), shown
-    left of LADEV's column in the given order.
+    left of the measured columns in the given order. ``systems``: (label, config overrides) of the
+    compilers measured now (``[("tagged", ["compile.reader=tagged"]), ("rules", ["compile.reader=rules"])]``).
     """
     rows = load_description_rows(rows_path)
-    compile_fn, catalog, resolver = offline_compile_fn(conf_dir)
-    result = evaluate_descriptions(rows, compile_fn, catalog, resolver)
     stored = [baseline] if isinstance(baseline, dict) else list(baseline or [])
     cols: dict[str, dict[str, Any]] = {str(b.get("label", "baseline")): b for b in stored}
-    cols["LADEV"] = result.summary()
+    for label, overrides in systems:
+        compile_fn, catalog, resolver = offline_compile_fn(conf_dir, overrides)
+        cols[label] = evaluate_descriptions(rows, compile_fn, catalog, resolver).summary()
     names = list(cols)
     out = [f"{len(rows)} descriptions ({rows_path.name}); the compiler reads the task from the text.", ""]
     out.append("| measure | " + " | ".join(names) + " |")

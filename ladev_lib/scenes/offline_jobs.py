@@ -2,8 +2,11 @@
 
 Inputs (the same the prompt in ``conf/prompts/default.yaml`` is rendered
 from): ``description``, ``instruction`` (may be empty), ``task`` (may be
-empty), ``objects`` (the catalog's list in the prompt). The answer is the JSON
-a model is asked for, read by :func:`ladev_lib.language.scene.read_description`.
+empty), ``objects`` (the catalog's list in the prompt), and ``reader``
+(``compile.reader``): ``tagged`` reads through the learned span tagger
+(:func:`ladev_lib.language.scene.tagged.read_tagged`), ``rules`` through the
+rule reader alone (:func:`ladev_lib.language.scene.read_description`). The
+answer is the JSON a model is asked for.
 """
 
 from __future__ import annotations
@@ -12,9 +15,10 @@ import json
 
 from ladev_lib.language.scene import RULE_MODULES as READER_MODULES
 from ladev_lib.language.scene import Vocabulary, read_description
+from ladev_lib.language.scene.tagged import read_tagged
 from ladev_lib.llm.base import OFFLINE_JOBS, LLMRequest
 
-RULE_MODULES = (*READER_MODULES,)
+RULE_MODULES = (*READER_MODULES, "ladev_lib.language.scene.tagged")
 """Modules whose source is part of the offline rules' fingerprint."""
 
 
@@ -22,7 +26,8 @@ RULE_MODULES = (*READER_MODULES,)
 def compile_scene(request: LLMRequest) -> str:
     inputs = request.inputs
     vocab = Vocabulary.from_objects(inputs.get("objects") or [])
-    ops = read_description(
+    read = read_tagged if str(inputs.get("reader") or "rules") == "tagged" else read_description
+    ops = read(
         str(inputs.get("description") or ""),
         vocab,
         instruction=str(inputs.get("instruction") or "") or None,

@@ -137,6 +137,8 @@ class SceneCompiler:
             "objects": self._objects,
             "schema": self._schema_text,
         }
+        if self.llm.backend == "offline":
+            inputs["reader"] = self.config.reader  # which offline reader answers (a model reads for itself)
         # The answer depends on the text alone, not on the scene's seed: equal texts share a call.
         return build_request(JOB, self.prompt, inputs, self.llm, json_schema=self._schema, seed=self.llm.seed)
 

@@ -40,6 +40,17 @@ class WrittenScene:
     description: str
     instruction: str
     style: str
+    annotated: str | None = None
+    """The description with the reader's markup (``[[words|TAG]]``), when asked for: what each phrase says,
+    known by construction (training rows for the span tagger)."""
+
+
+_ANNOTATE = False
+
+
+def _m(text: str, tag: str) -> str:
+    """``text`` marked as ``tag`` when writing annotated text, else as is."""
+    return f"[[{text}|{tag}]]" if _ANNOTATE and text else text
 
 
 @dataclass
@@ -165,13 +176,20 @@ def camera_phrases(camera: CameraOffset, style: str, bounds: SceneBounds | None 
 
 def _object_phrase(item: _Item) -> str:
     article = "an" if item.name[0] in "aeiou" else "a"
-    return f"{article} {item.name}" + (f" {item.where}" if item.where else "")
+    return _m(f"{article} {item.name}", "OBJ") + (f" {_where_mark(item.where)}" if item.where else "")
+
+
+def _where_mark(where: str) -> str:
+    """A position phrase, marked: "at (0.1, 0.2)" marks the coordinates, words mark whole."""
+    if where.startswith("at ("):
+        return "at " + _m(where[3:], "POS")
+    return _m(where, "POS")
 
 
 def _structured(items: list[_Item], randoms: int, env: list[str], set_word: str, rng: np.random.Generator) -> str:
     n = len(items)
     named = [i for i in items if i.named]
-    parts = [f"{_count(n, rng)} {set_word}{_plural(n, 'object')}"]
+    parts = [_m(f"{_count(n, rng)} {set_word}{_plural(n, 'object')}", "TOTAL")]
     if rng.random() < 0.5:
         parts += [f"one is {_object_phrase(i)}" for i in named]
     else:
@@ -184,25 +202,31 @@ def _prose(items: list[_Item], randoms: int, env: list[str], set_word: str, rng:
     n = len(items)
     named = [_object_phrase(i) for i in items if i.named]
     if randoms:
-        named.append(f"{_count(randoms, rng)} other {set_word}{_plural(randoms, 'object')}")
+        named.append(_m(f"{_count(randoms, rng)} other {set_word}{_plural(randoms, 'object')}", "ANY"))
     listing = named[0] if len(named) == 1 else ", ".join(named[:-1]) + " and " + named[-1]
     opener = str(rng.choice(["On the table there are", "The scene holds", "Place", "A table with"]))
     if n == 1:
         opener = str(rng.choice(["On the table there is", "The scene holds", "A table with"]))
         text = f"{opener} {listing}."
     else:
-        text = f"{opener} {_count(n, rng)} {set_word}{_plural(n, 'object')}: {listing}."
+        total = _m(f"{_count(n, rng)} {set_word}{_plural(n, 'object')}", "TOTAL")
+        text = f"{opener} {total}: {listing}."
     if env:
-        text += " " + env[0][0].upper() + ", ".join(env)[1:] + "."
+        first = ", ".join(env)
+        text += " " + (_capitalised(first) if first.startswith("[[") else first[0].upper() + first[1:]) + "."
     return text
+
+
+def _capitalised(marked: str) -> str:
+    return marked[:2] + marked[2].upper() + marked[3:]
 
 
 def _terse(items: list[_Item], randoms: int, env: list[str], set_word: str, rng: np.random.Generator) -> str:
     n = len(items)
-    parts = [i.name + _terse_where(i.where) for i in items if i.named]
+    parts = [_m(i.name, "OBJ") + _terse_where(i.where) for i in items if i.named]
     if randoms:
-        parts.append(f"{randoms} random")
-    text = f"{n} {set_word}{_plural(n, 'object')}: " + ", ".join(parts)
+        parts.append(_m(f"{randoms} random", "ANY"))
+    text = _m(f"{n} {set_word}{_plural(n, 'object')}", "TOTAL") + ": " + ", ".join(parts)
     if env:
         text += "; " + "; ".join(env)
     return text
@@ -212,26 +236,26 @@ def _terse_where(where: str | None) -> str:
     if not where:
         return ""
     where = where.removeprefix("at ").removeprefix("on the ")
-    return f" {where}" if where.startswith("(") else f" ({where})"
+    return f" {_m(where, 'POS')}" if where.startswith("(") else f" ({_m(where, 'POS')})"
 
 
 def _commands(items: list[_Item], randoms: int, env: list[str], set_word: str, rng: np.random.Generator) -> str:
     lines = []
     for i in items:
         if i.named:
-            lines.append(f"ADD {i.name}" + (f" to {i.where}" if i.where else ""))
-    lines += [f"ADD random {set_word}object"] * randoms
+            lines.append(f"ADD {_m(i.name, 'OBJ')}" + (f" to {_m(i.where, 'POS')}" if i.where else ""))
+    lines += [f"ADD {_m(f'random {set_word}object', 'ANY')}"] * randoms
     lines += env
     return "\n".join(lines)
 
 
 def _list(items: list[_Item], randoms: int, env: list[str], set_word: str, rng: np.random.Generator) -> str:
     lines = ["Objects:"]
-    lines += [f"- {i.name}" + (f", {i.where}" if i.where else "") for i in items if i.named]
+    lines += [f"- {_m(i.name, 'OBJ')}" + (f", {_where_mark(i.where)}" if i.where else "") for i in items if i.named]
     if randoms:
-        lines.append(f"- {randoms} random {set_word}{_plural(randoms, 'object')}")
+        lines.append("- " + _m(f"{randoms} random {set_word}{_plural(randoms, 'object')}", "ANY"))
     lighting = [e for e in env if "light" in e]
-    camera = [e for e in env if "camera" in e or e.startswith(("tilted", "panned", "rolled"))]
+    camera = [e for e in env if "camera" in e or e.lstrip("[").startswith(("tilted", "panned", "rolled"))]
     lines.append("Lighting: " + (lighting[0] if lighting else "default"))
     lines.append("Camera: " + (", ".join(camera) if camera else "default"))
     return "\n".join(lines)
@@ -251,8 +275,19 @@ def write_scene(
     catalog: Catalog,
     bounds: SceneBounds | None = None,
     style: str | None = None,
+    annotate: bool = False,
 ) -> WrittenScene:
-    """A description and basic instruction for one scene of the design."""
+    """A description and basic instruction for one scene of the design; with ``annotate``, also the
+    description in the reader's markup (the same text once the markup is taken out)."""
+    global _ANNOTATE
+    if annotate:
+        plain = write_scene(task, num_objects, object_set, environment, seed, catalog, bounds, style)
+        _ANNOTATE = True
+        try:
+            marked = write_scene(task, num_objects, object_set, environment, seed, catalog, bounds, style)
+        finally:
+            _ANNOTATE = False
+        return WrittenScene(plain.description, plain.instruction, plain.style, marked.description)
     bounds = bounds or SceneBounds()
     rng = np.random.default_rng(seed)
     spec = sample_scene(
@@ -281,8 +316,8 @@ def write_scene(
     env: list[str] = []
     light = lighting_phrase(spec.lighting.intensity_delta, style, rng)
     if light:
-        env.append(light)
-    env += camera_phrases(spec.camera, style, bounds)
+        env.append(_m(light, "LIGHT"))
+    env += [_m(c, "CAM") for c in camera_phrases(spec.camera, style, bounds)]
     set_word = ""
     if object_set == "ycb" and rng.random() < 0.7:
         set_word = "YCB "

@@ -132,6 +132,8 @@ class Vocabulary:
     categories: set[str]
     name_ids: dict[str, str] = field(default_factory=dict)
     """Name or synonym as the catalog writes it (normalised) -> catalog id."""
+    category_of: dict[str, str] = field(default_factory=dict)
+    """catalog id -> its category ("fruit", "can")."""
 
     @classmethod
     def from_objects(cls, objects: Iterable[Mapping[str, Any]]) -> Vocabulary:
@@ -139,6 +141,7 @@ class Vocabulary:
         ids: dict[str, str] = {}
         categories: set[str] = set()
         name_ids: dict[str, str] = {}
+        category_of: dict[str, str] = {}
         for o in objects:
             display = _norm_name(str(o["name"]))
             names.add(display)
@@ -149,6 +152,7 @@ class Vocabulary:
             ids[str(o["id"]).lower()] = display
             if o.get("category"):
                 categories.add(str(o["category"]).replace("_", " "))
+                category_of[str(o["id"]).lower()] = str(o["category"]).replace("_", " ")
         for n in list(names):
             spaced = re.sub(r"(?<=\d)(?=[a-z])", " ", n)
             if spaced != n:
@@ -157,7 +161,7 @@ class Vocabulary:
         for form, name in list(canonical.items()):
             if SPLIT_WORDS.search(form):
                 canonical[form.replace(" ", "~")] = name
-        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories, name_ids)
+        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories, name_ids, category_of)
 
     @property
     def name_pattern(self) -> re.Pattern[str]:

@@ -1,0 +1,773 @@
+"""The scene from a tagged description: what the tagger marked, read by the value rules.
+
+The span tagger (:mod:`ladev_lib.language.tagging`) decides *which* phrases
+say what: the objects put in the scene, those only mentioned again or taken
+back, the random fill and the stated total, the task's object, destination
+and relation, positions, and the lighting and camera words that still hold
+after the writer's corrections. This module reads the values out of those
+phrases with the rule readers' value functions (catalog names, counts,
+regions, amounts, directions) and assembles the same operations dict as
+:func:`ladev_lib.language.scene.reader.read_description`.
+
+    read_tagged("a bowl - no, a basket, and two plums; one plum goes in the basket", vocab)
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from ladev_lib.language.frames import read_instruction
+from ladev_lib.language.scene.environment import merge_camera
+from ladev_lib.language.scene.objects import (
+    canonical_name,
+    find_region,
+    find_relation,
+    singular,
+)
+from ladev_lib.language.scene.settings import read_camera_request, read_lighting_request
+from ladev_lib.language.scene.words import Vocabulary, normalize_text, protect_coordinates
+from ladev_lib.language.tagging.markup import RELATION_TAGS, Span
+
+_OBJECT_TAGS = ("OBJ", "REF", "DROP", "SRC", "TGT")
+_POSITION_TAGS = ("POS", "POS_NEXT", "POS_ALL")
+_PRONOUN = re.compile(r"^(?:it|them|that|this|that one|this one|those|these|they|the one|one)$")
+_DETERMINERS = re.compile(
+    r"^(?:(?:the|a|an|one|some|any|another|that|this|those|these|its|my|our|your|said|same|both|each|"
+    r"single|lone|one of the|one of|of the|other|\d+x?|x\d+)\s+)+"
+)
+_NUMBER = re.compile(r"(?<![\d.])(\d+)(?![\d.])")
+_SENTENCE_END = re.compile(r"[.!?;\n]")
+_WORDS = ("zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve")
+
+
+_ADJECTIVE = re.compile(
+    r"^(?:(?:small|large|big|little|tiny|light|dark|extra large|plain|regular|"
+    r"green|yellow|red|blue|pink|purple|orange|white|black|brown|grey|gray|navy|lime)\s*)+$"
+)
+_RELATION_WORDS = re.compile(
+    r"\b(?:near|next to|beside|besides|by|close to|closer to|alongside|adjacent to|around|left of|right of|"
+    r"in front of|behind|against|nearby|touching|beneath|under|on top of|on|atop|in|inside|into|between|with)\s*$"
+)
+_GROUP_NOUN = re.compile(r"\b(?:\d+|two|three|four|five|six|seven|several|some|few|pair of|couple of)\s+((?:[a-z]+\s+){0,2}[a-z]+s)\b")
+_STOPWORDS = frozenset({"the", "a", "an", "of", "and", "or", "to", "in", "on", "at", "with", "some", "any"})
+
+
+@dataclass
+class _Mention:
+    tag: str
+    span: Span
+    name: str | None = None
+    """Catalog name (as the vocabulary spells it) or, for an unknown object, its phrase."""
+    unknown: bool = False
+    count: int = 1
+    positions: list[dict[str, Any]] = field(default_factory=list)
+
+    @property
+    def position(self) -> dict[str, Any] | None:
+        return self.positions[-1] if self.positions else None
+
+
+@dataclass
+class _Object:
+    name: str
+    unknown: bool = False
+    position: dict[str, Any] | None = None
+    mentions: list[_Mention] = field(default_factory=list)
+
+
+def _norm(text: str, vocab: Vocabulary) -> str:
+    return normalize_text(text, vocab).strip(" .,;:!?\"'()[]")
+
+
+def _count(normal: str, default: int = 1) -> int:
+    m = _NUMBER.search(normal)
+    if m is None:
+        return default
+    n = int(m.group(1))
+    return n if 0 < n <= 12 else default
+
+
+def _names(phrase: str, vocab: Vocabulary) -> list[tuple[str, int]]:
+    """(catalog name, count) for each catalog name in an object phrase ("two apples and a pear", "apple x2")."""
+    normal = _norm(phrase, vocab)
+    out: list[tuple[str, int]] = []
+    at = 0
+    for m in vocab.name_pattern.finditer(normal):
+        before = normal[at:m.start()]
+        if out and not re.search(r"[,;/&+]|\b(?:and|or|plus|with|then)\b", before):
+            out.pop()  # "cheez it cracker box": two names with nothing between are one object, named by the last
+        after = re.match(r"\s*(?:\(\s*)?(?:x|×|\*|times\s*)\s*(\d{1,2})\b|\s*\(\s*(\d{1,2})\s*\)", normal[m.end():])
+        if re.search(r"\bone of (?:the|those|these|them)?\s*$", before):
+            n = 1
+        elif after is not None:
+            n = int(after.group(1) or after.group(2))
+        else:
+            n = _count(before.split(",")[-1].split(" and ")[-1]) if _NUMBER.search(before) else 1
+        out.append((canonical_name(vocab, m.group(0)), max(min(n, 12), 1)))
+        at = m.end()
+    return out
+
+
+def _bare(phrase: str, vocab: Vocabulary) -> str:
+    """An object phrase without its determiners and count ("a little toy car" -> "little toy car")."""
+    normal = _norm(re.sub(r"\b(?:one|ones)\b", "qqoneqq", phrase, flags=re.IGNORECASE), vocab)
+    normal = re.sub(r"\([^()]*\)", " ", normal)
+    normal = re.sub(r"^(?:either|any|whichever|each)\s+", "", normal.strip())
+    normal = _DETERMINERS.sub("", normal.strip())
+    normal = re.sub(r"^(?:qqoneqq of (?:the |those |these )?)", "", normal)
+    normal = re.sub(r"^qqoneqq\s+(?=\w)", "", normal)
+    normal = re.sub(r"\s+", " ", normal).strip(" .,;:-")
+    return normal.replace("qqoneqq", "one")
+
+
+class _Assembly:
+    def __init__(self, text: str, spans: list[Span], vocab: Vocabulary) -> None:
+        self.text = text
+        self.spans = sorted(spans, key=lambda s: s.start)
+        self.vocab = vocab
+        self.mentions: list[_Mention] = []
+        self.objects: list[_Object] = []
+
+    def retag(self) -> None:
+        """What a phrase's own words say about its tag: "not a bowl" takes it back, "random filler up to five
+        objects" and "just the two" state totals, "any two objects" are random ones, "random objects: two" counts."""
+        out: list[Span] = []
+        spans = self.spans
+        skip: set[int] = set()
+        for k, s in enumerate(spans):
+            if k in skip:
+                continue
+            low = s.text.lower()
+            before = self.text[max(0, s.start - 12):s.start].lower()
+            tag = s.tag
+            if tag == "OBJ" and re.search(r"\b(?:not|no|without|minus|except)\s+$", before):
+                tag = "DROP"
+            elif tag in ("OBJ", "REF") and re.search(
+                r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|cut|nix)"
+                r"\s+$", before
+            ):
+                tag = "DROP"  # "actually, drop the pepsi can"
+            elif tag == "ANY" and re.search(r"\bup to\s+$", before):
+                tag = "TOTAL"  # "fill the table up to six objects with random stuff"
+            elif tag == "ANY" and re.search(r"\b(?:up to|in total|total|in all|overall|altogether)\b", low) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b", low):
+                tag = "TOTAL"
+            elif tag == "TOTAL" and re.search(r"\b(?:any|random|other|more|extra|additional|arbitrary)\b", low):
+                tag = "ANY"
+            elif tag in ("CAM", "LIGHT") and re.fullmatch(r"\(\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*,\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*\)", low) \
+                    and re.search(r"(?:\bto|\bat|@)\s*$", before):
+                tag = "POS"  # "ADD soup can to (5 cm, -10 cm)": where the object goes
+            if tag == "ANY" and not _NUMBER.search(_norm(s.text, self.vocab)) and k + 1 < len(spans):
+                nxt = spans[k + 1]
+                if nxt.tag == "TOTAL" and re.fullmatch(r"\s*[:=]\s*", self.text[s.end:nxt.start]):
+                    out.append(Span("ANY", s.start, nxt.end, self.text[s.start:nxt.end]))  # "random objects: two"
+                    skip.add(k + 1)
+                    continue
+            out.append(Span(tag, s.start, s.end, s.text) if tag != s.tag else s)
+        # "[cup] with [a handle]": two object phrases that together are one catalog name are that object
+        joined: list[Span] = []
+        for s in out:
+            last = joined[-1] if joined else None
+            if last is not None and last.tag == s.tag and s.tag in _OBJECT_TAGS and re.fullmatch(
+                r"\s+(?:with|of)?\s*", self.text[last.end:s.start]
+            ):
+                whole = self.text[last.start:s.end]
+                names = _names(whole, self.vocab)
+                if len(names) == 1 and not _names(last.text, self.vocab) and names != _names(s.text, self.vocab):
+                    joined[-1] = Span(s.tag, last.start, s.end, whole)
+                    continue
+            joined.append(s)
+        self.spans = joined
+
+    # -- mentions ---------------------------------------------------------------
+    def _group_head(self, pos: int) -> str | None:
+        """The noun of the plural group said just before ``pos`` ("three Lego bricks: a pink, a blue ...")."""
+        window = self.text[max(0, pos - 160):pos].lower()
+        found = list(_GROUP_NOUN.finditer(window))
+        for m in reversed(found):
+            head = singular(m.group(1).strip())
+            if head.split()[-1] in ("object", "item", "thing", "degree", "centimeter", "centimetre", "percent", "time"):
+                continue
+            return head
+        return None
+
+    def _mention(self, s: Span) -> list[_Mention]:
+        found = _names(s.text, self.vocab)
+        if len(found) > 1 and s.tag in ("OBJ", "DROP", "REF"):
+            return [_Mention(s.tag, s, name, count=n) for name, n in found]  # "a fork and a spoon" as one phrase
+        if found:
+            return [_Mention(s.tag, s, found[0][0], count=found[0][1])]
+        bare = _bare(s.text, self.vocab)
+        normal = _norm(s.text, self.vocab)
+        count = _count(normal) if s.tag == "OBJ" else 1
+        words = re.sub(r"\bones?$", "", bare).strip()
+        if bare and (_ADJECTIVE.match(bare) or re.search(r"\bones?$", bare)) and not _PRONOUN.match(bare):
+            # "a pink", "the yellow one": the head noun of the group or object said before
+            head = self._group_head(s.start) or self._head_before(s.start)
+            if head is not None:
+                noun = head.split()[-1]
+                for filled in (f"{words} {head}", f"{' '.join(head.split()[:-1])} {words} {noun}", f"{words} {noun}"):
+                    named = _names(filled.strip(), self.vocab)
+                    if named:
+                        return [_Mention(s.tag, s, named[0][0], count=count)]
+                return [_Mention(s.tag, s, f"{words} {head}".strip(), unknown=True, count=count)]
+        if not bare or re.fullmatch(r"(?:\d+|of them|of those|of these|more|too)(?: of them| more)?", bare):
+            # "no, just [two]", "[two of them]": as many of the object named before
+            earlier = [x for x in self.mentions if x.span.end <= s.start and x.name]
+            if earlier and s.tag == "OBJ" and re.search(r"\d", normal):
+                return [_Mention(s.tag, s, earlier[-1].name, earlier[-1].unknown, count=count)]
+        if count > 1:
+            bare = singular(bare)
+        kind = self._catalog_kind(bare) if s.tag in ("OBJ", "REF", "DROP") and bare else None
+        if kind is not None:
+            return [_Mention(s.tag, s, kind, count=count)]
+        return [_Mention(s.tag, s, bare or None, unknown=True, count=count)]
+
+    def _head_before(self, pos: int) -> str | None:
+        earlier = [m for m in self.mentions if m.span.end <= pos and m.name and not _PRONOUN.match(m.name)]
+        return earlier[-1].name.split()[-1] if earlier and earlier[-1].name else None
+
+    def _catalog_kind(self, bare: str) -> str | None:
+        """A phrase the catalog reads as one of its objects by head noun and modifiers ("yellow lego")."""
+        frame = read_instruction(f"pick up the {bare}")
+        obj = frame.object
+        if frame.task != "pick_up" or obj is None or obj.object_id is None:
+            return None
+        name = self.vocab.ids.get(obj.object_id)
+        head = singular(bare.split()[-1])
+        said = [n for n, cid in self.vocab.name_ids.items() if cid == obj.object_id] + ([name] if name else [])
+        if not any(singular(n.split()[-1]) == head for n in said):
+            return None  # "wine glass" is not the windex bottle: a kind only by its own head noun
+        return name
+
+    def _a_thing(self, m: _Mention) -> bool:
+        """Whether an unknown phrase names a thing at all: its head noun is an English noun (WordNet) or a word of
+        a catalog name; "asdf qwerty" and "lorem ipsum" are no objects, "a laptop" is one the catalog lacks."""
+        if not m.unknown or m.name is None or _PRONOUN.match(m.name):
+            return True
+        from ladev_lib.language.wordnet import default_nouns
+
+        head = m.name.split()[-1]
+        nouns = default_nouns()
+        known = {w for n in self.vocab.names for w in n.split()}
+        if head in known or singular(head) in known:
+            return True
+        return nouns is None or bool(nouns.senses(head) or nouns.senses(singular(head)))
+
+    def read_mentions(self) -> None:
+        for s in self.spans:
+            if s.tag in _OBJECT_TAGS:
+                self.mentions.extend(
+                    m for m in self._mention(s) if (m.name is None or m.name not in _STOPWORDS) and self._a_thing(m)
+                )
+        for m in self.mentions:  # pronouns named as objects ("near it") are their antecedents
+            if m.name is not None and _PRONOUN.match(m.name) and m.tag in ("REF", "OBJ"):
+                # "two bananas near it": not the object being placed, and "it" is one thing
+                placed = [p for p in self.spans if p.tag in _POSITION_TAGS and 0 <= m.span.start - p.end <= 3]
+                skip = {x.span for x in self.mentions if placed and x.span.end <= placed[0].start}
+                skip = {max(skip, key=lambda sp: sp.end)} if skip else set()
+                ante = next((x for x in reversed(self.mentions) if x.span.end <= m.span.start and x.tag != "DROP"
+                             and x.name and not _PRONOUN.match(x.name) and x.span not in skip
+                             and (m.name != "it" or x.count == 1)), None)
+                m.name, m.unknown = (ante.name, ante.unknown) if ante is not None else (None, True)
+                if m.tag == "OBJ":
+                    m.tag = "REF"
+
+    def _headers_and_restatements(self) -> None:
+        """"two soda cans, a Sprite and a 7 Up": a counted plural that introduces as many listed objects is their
+        header, not more objects; "towel: back" after a towel was listed: the same towel, placed."""
+        obj = [m for m in self.mentions if m.tag == "OBJ"]
+        for k, m in enumerate(obj):
+            if m.count < 2 or not m.unknown and not (m.name and m.name.split()[-1] in ("can", "cube", "brick", "ball", "cup", "block")):
+                continue
+            nxt = [x for x in obj[k + 1:] if self._same_sentence(m.span.end, x.span.start)]
+            gap = self.text[m.span.end:nxt[0].span.start] if nxt else ""
+            if len(nxt) >= m.count and re.fullmatch(r"\s*(?:[,:(\u2014\u2013-]|including|namely|i\.e\.|that is)\s*(?:(?:a|an|one|the)\s+)?", gap):
+                m.tag = "HEADER"
+        seen: set[str] = set()
+        previous: _Mention | None = None
+        for m in self.mentions:
+            last, previous = previous, m
+            if m.tag != "OBJ" or m.name is None:
+                continue
+            if m.name in seen and last is not None and last.tag == "DROP" and re.fullmatch(
+                r"\s*[,;:\u2014\u2013-]?\s*(?:but|just|only|rather|instead)?\s*", self.text[last.span.end:m.span.start]
+            ):
+                m.tag = "REF"  # "a lemon and a mug. Not a bowl, a mug.": the mug said again
+                continue
+            indefinite = re.match(r"\s*(?:a|an|another|one|two|three|four|five|\d+|more|extra|second)\b", m.span.text.lower())
+            if m.name in seen and m.positions and not indefinite:
+                m.tag = "REF"
+            seen.add(m.name)
+
+    def _same_sentence(self, a: int, b: int) -> bool:
+        lo, hi = min(a, b), max(a, b)
+        return _SENTENCE_END.search(self.text[lo:hi]) is None
+
+    # -- positions --------------------------------------------------------------
+    def read_positions(self) -> None:
+        spans = self.spans
+        for k, s in enumerate(spans):
+            if s.tag not in _POSITION_TAGS:
+                continue
+            nxt = spans[k + 1] if k + 1 < len(spans) else None
+            position, ref_span = self._position(s, nxt)
+            if position is None:
+                continue
+            before = [m for m in self.mentions if m.span.end <= s.start and m.tag != "DROP" and m.span != ref_span]
+            after = [m for m in self.mentions if m.span.start >= s.end and m.tag != "DROP" and m.span != ref_span]
+            if s.tag == "POS_NEXT" and after:
+                targets = [m for m in after if m.span == after[0].span]
+            elif s.tag == "POS_ALL" and before:
+                targets = self._group_before(s, before)
+            elif before and self._pair(s, before):
+                targets = before[-2:]  # "; a marker and a fork at the front": both
+            elif before:
+                targets = [m for m in before if m.span == before[-1].span]
+            elif after:
+                targets = [m for m in after if m.span == after[0].span]
+            else:
+                continue
+            for m in targets:
+                m.positions.append(dict(position))
+
+    def _pair(self, s: Span, before: list[_Mention]) -> bool:
+        """Whether a position follows a pair of objects that forms its own clause ("; a marker and a fork at the
+        front", "with a plum and a pear up at the front") rather than the end of a longer list."""
+        if len(before) < 2 or before[-1].span == before[-2].span:
+            return False
+        first, second = before[-2], before[-1]
+        if not re.fullmatch(r"\s+and\s+", self.text[first.span.end:second.span.start]):
+            return False
+        if not re.fullmatch(r"\s*(?:(?:go|sit|stand|lie|are|both|all|placed|set|put|up|over|down)\s+)*", self.text[second.span.end:s.start]):
+            return False
+        lead = self.text[max(0, first.span.start - 12):first.span.start]
+        return re.search(r"(?:^|[.;:\n]|\bwith|,\s*and|\bplus)\s*$", lead) is not None or first.span.start < 3
+
+    def _group_before(self, s: Span, before: list[_Mention]) -> list[_Mention]:
+        """The object phrases of the coordination just before ``s`` (back to a sentence end or a position)."""
+        group: list[_Mention] = []
+        limit = s.start
+        for m in reversed(before):
+            gap = self.text[m.span.end:limit]
+            if _SENTENCE_END.search(gap) or ":" in gap or (group and any(
+                p.tag in _POSITION_TAGS and m.span.end <= p.start < limit for p in self.spans
+            )):
+                break
+            group.append(m)
+            limit = m.span.start
+        return list(reversed(group))
+
+    def _position(self, s: Span, nxt: Span | None) -> tuple[dict[str, Any] | None, Span | None]:
+        protected, slots = protect_coordinates(normalize_text(s.text, self.vocab))
+        for key in re.findall(r"@p\d+@", protected):
+            x, y = slots[key][:2]
+            return {"x": round(x, 4), "y": round(y, 4)}, None
+        normal = _norm(s.text, self.vocab)
+        letter = {"l": "left", "r": "right", "c": "center", "ctr": "center", "f": "front", "b": "back", "mid": "center"}
+        if normal in letter:
+            return {"region": letter[normal]}, None
+        protected, slots = protect_coordinates(normal)
+        for key in re.findall(r"@p\d+@", protected):
+            x, y = slots[key][:2]
+            return {"x": round(x, 4), "y": round(y, 4)}, None
+        # a relation to the object phrase right after the relation words ("[near] [the bowl]")
+        if (
+            nxt is not None and nxt.tag in _OBJECT_TAGS and nxt.start - s.end <= 3
+            and not re.search(r"[.;:\n]", self.text[s.end:nxt.start]) and _RELATION_WORDS.search(normal)
+        ):
+            ref = next((m for m in self.mentions if m.span == nxt), None)
+            if ref is not None and ref.name is not None:
+                relation = "near"
+                for pattern, name in (
+                    (r"\bleft of\b", "left_of"), (r"\bright of\b", "right_of"), (r"\bin front of\b", "in_front_of"),
+                    (r"\bbehind\b", "behind"),
+                ):
+                    if re.search(pattern, normal):
+                        relation = name
+                        break
+                return {"relation": relation, "reference": ref.name}, nxt
+        rel = find_relation(self.vocab, normal)
+        if rel is not None and rel[0].get("reference") in self.vocab.canonical.values():
+            return rel[0], None
+        region = find_region(normal)
+        if region is not None:
+            return {"region": region[0]}, None
+        return None, None
+
+    # -- objects ----------------------------------------------------------------
+    def _same(self, a: str | None, b: str | None) -> bool:
+        if a is None or b is None:
+            return False
+        ids = self.vocab.name_ids
+        return a == b or (a in ids and ids.get(a) == ids.get(b)) or singular(a) == singular(b)
+
+    def _find(self, name: str | None) -> list[_Object]:
+        return [o for o in self.objects if self._same(o.name, name)]
+
+    def build_objects(self) -> None:
+        for m in self.mentions:
+            if m.name is None:
+                continue
+            if m.tag == "OBJ":
+                for i in range(max(m.count, 1)):
+                    # one position for the group is said of each; several are taken in turn
+                    pos = m.positions[0] if len(m.positions) == 1 else (m.positions[i] if i < len(m.positions) else None)
+                    self.objects.append(_Object(m.name, m.unknown, dict(pos) if pos else None, [m]))
+            elif m.tag == "DROP":
+                earlier = [o for o in self._find(m.name) if o.mentions and o.mentions[0].span.start < m.span.start]
+                if earlier:
+                    self.objects.remove(earlier[-1])
+
+    def add_task_objects(self, task: dict[str, Any]) -> None:
+        """The task's objects are the scene's: added when no phrase put them there; positions said of them kept."""
+        for key, tag in (("source", "SRC"), ("target", "TGT")):
+            name = task.get(key)
+            if not isinstance(name, str) or not name:
+                continue
+            said = [m for m in self.mentions if m.tag == tag and m.positions]
+            found = self._find(name)
+            if not found:
+                unknown = name not in self.vocab.canonical.values() and name not in self.vocab.name_ids
+                position = said[-1].position if said else None
+                self.objects.append(_Object(name, unknown, dict(position) if position else None))
+            elif said and found[0].position is None:
+                found[0].position = dict(said[-1].position or {})
+
+    def task_slots(self, task: dict[str, Any]) -> int:
+        """An instruction's objects the text leaves unsaid take the places the text keeps for them: a
+        category phrase of their kind ("two fruits" holds the orange) or a random object ("4 random objects
+        and a basket" holds the carrot). Returns how many random places were taken."""
+        taken = 0
+        for key in ("source", "target"):
+            name = task.get(key)
+            if not isinstance(name, str) or not name or self._find(name):
+                continue
+            kind = self._category(name)
+            placeholder = next((o for o in self.objects if o.unknown and kind and singular(o.name) == kind), None)
+            if placeholder is not None:
+                self.objects.remove(placeholder)
+            else:
+                taken += 1
+        return taken
+
+    def _category(self, name: str) -> str | None:
+        oid = self.vocab.name_ids.get(name) or next((c for c, d in self.vocab.ids.items() if d == name), None)
+        return self.vocab.category_of.get(oid) if oid is not None else None
+
+    def resolve_refs(self) -> None:
+        """REF mentions: another mention of an object there; a position said of it goes to it."""
+        for m in self.mentions:
+            if m.tag != "REF" or m.name is None:
+                continue
+            same = self._find(m.name) or self._by_head(m.name)
+            if same:
+                free = [o for o in same if o.position is None] or same  # a later position corrects an earlier one
+                for pos in m.positions:
+                    if free:
+                        free.pop(0).position = dict(pos)
+            elif not m.unknown:
+                self.objects.append(_Object(m.name, False, dict(m.position) if m.position else None, [m]))
+        for o in self.objects:  # "beside the cup": the scene's one cup
+            ref = (o.position or {}).get("reference")
+            if isinstance(ref, str):
+                o.position["reference"] = self._in_scene(ref)  # type: ignore[index]
+
+    def _by_head(self, name: str | None) -> list[_Object]:
+        """Objects a shorter name ends ("the plate" for the described "red plate", "the cup")."""
+        if not name:
+            return []
+        head = singular(name.split()[-1])
+        fits = [o for o in self.objects if singular(o.name.split()[-1]) == head and o.name.endswith(singular(name))]
+        if len({o.name for o in fits}) == 1:
+            return fits
+        return []
+
+    # -- the task ---------------------------------------------------------------
+    def task_type(self) -> str | None:
+        rels = [RELATION_TAGS[s.tag] for s in self.spans if s.tag in RELATION_TAGS]
+        if not rels:
+            return None
+        placing = [r for r in rels if r != "pick_up"]
+        return placing[-1] if placing else rels[-1]
+
+    def _phrase(self, tag: str) -> _Mention | None:
+        found = [m for m in self.mentions if m.tag == tag]
+        kept = [m for m in found if not re.search(
+            r"\b(?:not|no|rather than|instead of|never|nor)\s+(?:\w+\s+)?$", self.text[max(0, m.span.start - 16):m.span.start].lower()
+        )]
+        found = kept or found  # "in the basket, not on the towel": the towel is no destination
+        if not found:
+            return None
+        named = [m for m in found if m.name and not _PRONOUN.match(m.name)]
+        return named[-1] if named else found[-1]
+
+    def _antecedent(self, m: _Mention, exclude: _Mention | None = None) -> _Mention | None:
+        earlier = [
+            x for x in self.mentions
+            if x.span.end <= m.span.start and x.tag != "DROP" and x is not exclude and x.name
+            and not _PRONOUN.match(x.name)
+        ]
+        return earlier[-1] if earlier else None
+
+    def _task_phrase(self, m: _Mention | None, exclude: _Mention | None = None) -> str | None:
+        """The name a task role is read from: pronouns filled in from the text before."""
+        if m is None:
+            return None
+        if not m.name or _PRONOUN.match(m.name):
+            ante = self._antecedent(m, exclude)
+            return ante.name if ante is not None else None
+        return m.name
+
+    def task(self) -> dict[str, Any] | None:
+        kind = self.task_type()
+        src_m, tgt_m = self._phrase("SRC"), self._phrase("TGT")
+        if kind is None:
+            if src_m is None:
+                return None
+            kind = "pick_up" if tgt_m is None else "move_near"
+        src = self._task_phrase(src_m)
+        tgt = self._task_phrase(tgt_m, exclude=src_m) if kind != "pick_up" else None
+        if src is None or (kind != "pick_up" and tgt is None):
+            return None
+        return self._ground_task(kind, src, tgt)
+
+    def _ground_task(self, kind: str, src: str, tgt: str | None) -> dict[str, Any]:
+        """Names as the scene has them: "the plate" is the scene's one (red) plate; unknown phrases stay."""
+        out: dict[str, Any] = {"type": kind, "source": self._in_scene(src), "target": self._in_scene(tgt) if tgt else None}
+        known = set(self.vocab.canonical.values())
+        if out["source"] not in known or (tgt is not None and out["target"] not in known):
+            grounded = self._ground_by_reader(kind, out["source"], out["target"])
+            if grounded is not None:
+                return grounded
+        return out
+
+    def _in_scene(self, name: str) -> str:
+        if self._find(name):
+            return name
+        by_head = self._by_head(name)
+        if by_head:
+            return by_head[0].name
+        return name
+
+    def _ground_by_reader(self, kind: str, src: str, tgt: str | None) -> dict[str, Any] | None:
+        by_name = {**self.vocab.name_ids, **{n: cid for cid, n in self.vocab.ids.items()}}
+        ids = [by_name[o.name] for o in self.objects if o.name in by_name]
+        statement = {
+            "pick_up": f"pick up the {src}", "move_near": f"move the {src} near the {tgt}",
+            "put_on": f"put the {src} on the {tgt}", "put_in": f"put the {src} in the {tgt}",
+        }[kind]
+        frame = read_instruction(statement, scene_objects=ids or None)
+        frame_in_scene = bool(ids)
+        if frame.task != kind or frame.object is None:
+            return None
+
+        def name(phrase: Any, said: str | None) -> str | None:
+            if phrase is None:
+                return said
+            oid = getattr(phrase, "object_id", None)
+            if oid is None or said is None:
+                return said
+            head = singular(said.split()[-1])
+            names = [n for n, cid in self.vocab.name_ids.items() if cid == oid] + [self.vocab.ids.get(oid, "")]
+            if said in self.vocab.name_ids or any(singular(n.split()[-1]) == head for n in names if n):
+                return self.vocab.ids.get(oid, said)
+            if frame_in_scene and oid in ids:
+                return self.vocab.ids.get(oid, said)  # "the vessel": the scene's one bowl
+            return said  # "a wine glass" is not the windex bottle
+
+        return {"type": kind, "source": name(frame.object, src),
+                "target": name(frame.destination, tgt) if kind != "pick_up" else None}
+
+    # -- counts -----------------------------------------------------------------
+    def total(self) -> int | None:
+        for s in reversed([s for s in self.spans if s.tag == "TOTAL"]):
+            m = _NUMBER.search(_norm(s.text, self.vocab))
+            if m is not None and 0 < int(m.group(1)) <= 20:
+                return int(m.group(1))
+        return None
+
+    def randoms(self) -> tuple[int, bool]:
+        """(random objects with a count, whether some random fill has no count)."""
+        n, fill = 0, False
+        for s in self.spans:
+            if s.tag != "ANY":
+                continue
+            normal = _norm(s.text, self.vocab)
+            m = _NUMBER.search(normal)
+            if re.search(r"\b(?:no|nothing|none|not|without|zero)\b", normal):
+                continue  # "nothing random"
+            if m is not None and 0 < int(m.group(1)) <= 12:
+                n += int(m.group(1)) - self._members(s)
+            elif re.search(r"\b(?:rest|else|remaining|remainder|others|fill\w*|up)\b", normal) or re.search(
+                r"\b(?:objects|things|items|ones|stuff|distractors|fillers|extras)\b", normal
+            ):
+                fill = True  # "the rest random", "random objects", "anything else"
+            else:
+                n += 1  # "a random fruit", "ADD random object"
+        return max(n, 0), fill
+
+    def _members(self, s: Span) -> int:
+        """Named objects said to be among a random group ("three random objects, one of them a marker")."""
+        after = [m for m in self.mentions if m.tag == "OBJ" and m.span.start > s.end and self._same_sentence(s.end, m.span.start)]
+        count = 0
+        at = s.end
+        member = re.compile(
+            r"\b(?:one|two|\d) of (?:them|which|those|these|those \w+|these \w+)\b|\bamong (?:them|which)\b|"
+            r"\binclud(?:ing|es|e)\b|\bone being\b|\bof which\b|\bas long as\b|\bmake sure\b"
+        )
+        inside = False
+        for m in after:
+            between = self.text[at:m.span.start].lower()
+            tail = self.text[m.span.end:m.span.end + 40].lower()
+            at = m.span.end
+            also = re.match(r"\s*(?:too|as well|also)\b", tail)
+            if member.search(between) or (inside and not also and re.fullmatch(r"\s*(?:,|and)\s*", between)) or re.match(
+                r"\s*(?:is|are|being|must be|should be)\s+(?:among|one of|part of|included)", tail
+            ):
+                count += m.count
+                inside = True
+            else:
+                break
+        return count
+
+
+def _valued(text: str) -> bool:
+    return re.search(r"\d|\b(?:one|two|three|four|five|six|seven|eight|nine|ten|half|quarter|third|fifth)\b", text.lower()) is not None
+
+
+def _with_key(s: Span, text: str) -> str:
+    """A span with the key it is the value of ("z_cm: [[1.5]]", "- yaw = [[+3]]"), when the line has one."""
+    line_start = text.rfind("\n", 0, s.start) + 1
+    prefix = text[line_start:s.start]
+    m = re.search(r"([A-Za-z][\w ./-]{0,30})[\"']?\s*[:=]\s*[\"']?\s*$", prefix)
+    if m is not None and re.search(r"\d", s.text.split()[0] if s.text.split() else "x") is not None:
+        return f"{m.group(1)}: {s.text}"
+    if m is not None:
+        return f"{m.group(1)}: {s.text}"
+    return s.text
+
+
+def _joined(spans: list[Span], text: str) -> str:
+    """The words of ``spans`` read in order; separate motions are joined with 'and'."""
+    out = ""
+    for s in spans:
+        piece = _with_key(s, text).strip()
+        if not out:
+            out = piece
+            continue
+        both_valued = _valued(out.split(" and ")[-1]) and _valued(piece) and re.search(
+            r"[a-z]{2,}", re.sub(r"\b(?:cm|mm|deg|degrees?|percent|centimet(?:er|re)s?|millimet(?:er|re)s?)\b", "", piece.lower())
+        )
+        out = f"{out} and {piece}" if both_valued else f"{out} {piece}"
+    return out
+
+
+def _environment(spans: list[Span], text: str, vocab: Vocabulary) -> list[dict[str, Any]]:
+    from ladev_lib.language.scene.reader import read_description
+
+    ops: list[dict[str, Any]] = []
+    light = [s for s in spans if s.tag == "LIGHT"]
+    cam = [s for s in spans if s.tag == "CAM"]
+    if light:
+        said = _joined(light, text)
+        op = read_lighting_request(said)
+        if op is None:
+            worded = said if re.search(r"\b(?:light|lights|lighting|brightness|lamps?|illumination)\b", said.lower()) \
+                else f"lighting {said}"
+            read = read_description(worded, vocab)
+            ops.extend(op for op in read.get("operations", []) if op.get("op") == "set_lighting")
+        elif op["intensity_delta"] != 0.0:
+            ops.append(op)
+    if cam:
+        said = _joined(cam, text)
+        op = read_camera_request(said)
+        if op is None:
+            worded = said if re.search(r"\b(?:camera|cam|view|viewpoint)\b", said.lower()) else f"camera {said}"
+            read = read_description(worded, vocab)
+            moves = [op for op in read.get("operations", []) if op.get("op") == "move_camera"]
+            ops.extend(merge_camera(moves) if len(moves) > 1 else moves)
+        elif any(op["translation_m"]) or any(op["rotation_deg"]):
+            ops.append(op)
+    return ops
+
+
+def assemble(
+    text: str,
+    spans: list[Span],
+    vocab: Vocabulary,
+    instruction: str | None = None,
+    task: str | None = None,
+) -> dict[str, Any]:
+    """Tagged spans of ``text`` -> a SceneOperations-shaped dict (objects, task, lighting, camera)."""
+    from ladev_lib.language.scene.reader import _instruction_task
+
+    a = _Assembly(text, spans, vocab)
+    a.retag()
+    a.read_mentions()
+    a.read_positions()
+    a._headers_and_restatements()
+    a.build_objects()
+    out: dict[str, Any] = {"schema_version": 1, "operations": []}
+    low = text.lower()
+    if re.search(r"\bycb\b|\bunseen objects?\b", low):
+        out["object_set"] = "ycb"
+    elif re.search(r"\bsimpler ?env\b|\bsimpler objects?\b|\bseen objects?\b|\bsimpler set\b", low):
+        out["object_set"] = "simpler"
+    stated = a.task()
+    if instruction:
+        parsed = _instruction_task(instruction, vocab)
+        if parsed is None:
+            out["error"] = (
+                f"the instruction {instruction!r} is none of the four task forms "
+                "(pick up X; move X near Y; put X on Y; put X in Y)"
+            )
+            return out
+        out["task"] = parsed
+    elif stated is not None:
+        out["task"] = stated
+    elif task:
+        out["task"] = {"type": task}
+    if text.strip() and not a.mentions and not any(s.tag in ("TOTAL", "ANY", "LIGHT", "CAM") for s in a.spans):
+        out["error"] = "no object, object count, position, lighting or camera setting found in the description"
+        return out
+    if instruction or stated is None:
+        # the text's own task phrases still name objects of the scene
+        for m in a.mentions:
+            if m.tag in ("SRC", "TGT") and m.name and not m.unknown and not _PRONOUN.match(m.name) and not a._find(m.name):
+                a.objects.append(_Object(m.name, False, dict(m.position) if m.position else None, [m]))
+    slots = a.task_slots(out.get("task") or {}) if instruction else 0
+    a.add_task_objects(out.get("task") or {})
+    a.resolve_refs()
+
+    ops: list[dict[str, Any]] = []
+    for obj in a.objects:
+        op: dict[str, Any] = {"op": "add_object", "object": obj.name}
+        if obj.position is not None:
+            op["position"] = obj.position
+        ops.append(op)
+    counted, _fill = a.randoms()
+    total = a.total()
+    randoms = max(total - len(a.objects), 0) if total is not None else max(counted - slots, 0)
+    ops.extend({"op": "add_object", "object": None} for _ in range(randoms))
+    ops.extend(_environment(a.spans, text, vocab))
+    out["operations"] = ops
+    return out
+
+
+def read_tagged(
+    description: str,
+    vocab: Vocabulary,
+    instruction: str | None = None,
+    task: str | None = None,
+    weights: str | None = None,
+) -> dict[str, Any]:
+    """Description -> operations dict, through the span tagger (the committed weights by default)."""
+    from ladev_lib.language.tagging.model import load_tagger
+
+    spans = load_tagger(weights).tag(description or "")
+    return assemble(description or "", spans, vocab, instruction=instruction, task=task)
+
+
+__all__ = ["assemble", "read_tagged"]
