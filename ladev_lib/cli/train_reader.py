@@ -3,10 +3,10 @@
     ladev train-reader                                   # the project's rows -> the packaged weights
     ladev train-reader my_rows/*.jsonl -o reader.safetensors --epochs 12
 
-Rows are JSON lines with an ``annotated`` description in the tagger's markup
-(``[[words|TAG]]``, see ``training/scene_tagger/README.md``). Training runs on
-the CPU (about 35 s an epoch for 1,600 rows on two cores) and prints the
-span scores on the held-out share. Point the compiler at other weights with
+Rows are JSON lines with an ``annotated`` description or instruction in the
+tagger's markup (``[[words|TAG]]``, see ``training/*/README.md``). Training
+runs on the CPU (about a minute an epoch for 4,000 rows on two cores) and
+prints the span scores on the held-out share. Point the compiler at other weights with
 ``LADEV_READER_WEIGHTS=path``.
 """
 
@@ -19,7 +19,7 @@ import click
 
 from ladev_lib.fingerprint import REPO_ROOT
 
-DEFAULT_ROWS = REPO_ROOT / "training" / "scene_tagger"
+DEFAULT_ROWS = (REPO_ROOT / "training" / "scene_tagger", REPO_ROOT / "training" / "instruction_tagger")
 
 
 @click.command()
@@ -35,16 +35,17 @@ DEFAULT_ROWS = REPO_ROOT / "training" / "scene_tagger"
 def command(
     rows: tuple[Path, ...], output: Path | None, epochs: int, batch_size: int, lr: float, seed: int, validation: float
 ) -> None:
-    """Train the span tagger on ROWS (JSONL files or folders; default: training/scene_tagger)."""
+    """Train the span tagger on ROWS (JSONL files or folders; default: training/scene_tagger and
+    training/instruction_tagger)."""
     from ladev_lib.errors import ConfigError
     from ladev_lib.language.tagging.model import WEIGHTS
     from ladev_lib.language.tagging.training import load_examples, train
 
     paths: list[Path] = []
-    for p in rows or (DEFAULT_ROWS,):
+    for p in rows or DEFAULT_ROWS:
         paths.extend(sorted(p.glob("*.jsonl")) if p.is_dir() else [p])
     if not paths:
-        raise ConfigError(f"no annotated rows found in {', '.join(str(p) for p in rows or (DEFAULT_ROWS,))}")
+        raise ConfigError(f"no annotated rows found in {', '.join(str(p) for p in rows or DEFAULT_ROWS)}")
     examples, problems = load_examples(paths)
     for line in problems:
         click.echo(f"skipped {line}", err=True)

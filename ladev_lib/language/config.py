@@ -32,6 +32,11 @@ class ParaphraseConfig(BaseModel):
         "verdicts do not depend on the CPU; bf16 autocast (about 1.6x faster where the CPU has native "
         "bf16, moves MiniLM similarities by up to 0.002) only when named.",
     )
+    second_reading: bool = Field(
+        default=True,
+        description="Where the reader cannot read an original or a candidate, read it again with the span "
+        "tagger (ladev_lib.language.tagged_frames) and compare that frame.",
+    )
     reader: Literal["auto", "offline", "llm"] = Field(
         default="auto",
         description="Who reads candidates back into (task, source, target): the offline parser, the "

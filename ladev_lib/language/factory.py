@@ -40,4 +40,5 @@ def make_validator(
         reader=reader,
         catalog=catalog,
         precision=resolve_precision(cfg.precision, cfg.device),
+        second_reading=cfg.second_reading,
     )

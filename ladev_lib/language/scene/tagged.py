@@ -51,6 +51,11 @@ _RELATION_WORDS = re.compile(
     r"in front of|behind|against|nearby|touching|beneath|under|on top of|on|atop|in|inside|into|between|with)\s*$"
 )
 _GROUP_NOUN = re.compile(r"\b(?:\d+|two|three|four|five|six|seven|several|some|few|pair of|couple of)\s+((?:[a-z]+\s+){0,2}[a-z]+s)\b")
+_TASK_CUE = (
+    r"\b(?:task|goal|aim|objective|job|test|robot|arm|gripper|manipulator|should|must|needs?|wants?|want|goes|go|"
+    r"put|puts|place|places|move|moves|set|sets|drop|drops|pick|picks|lift|lifts|grab|grabs|bring|brings|stack|"
+    r"lay|lays|slide|slides|carry|carries|take|takes|get|gets|end up|ends up|can it|could it|will|try)\b|->|=>|\?"
+)
 _STOPWORDS = frozenset({"the", "a", "an", "of", "and", "or", "to", "in", "on", "at", "with", "some", "any"})
 
 
@@ -165,6 +170,23 @@ class _Assembly:
                     skip.add(k + 1)
                     continue
             out.append(Span(tag, s.start, s.end, s.text) if tag != s.tag else s)
+        # "a sponge near the plate; camera 2 cm up": an indefinite object placed by a relation, in a clause with no
+        # word of doing or wanting, describes the scene (a position), it states no task
+        for k, s in enumerate(out):
+            if s.tag != "SRC" or not re.match(r"(?i)\s*(?:a|an|one)\s", s.text):
+                continue
+            lo = max(self.text.rfind(c, 0, s.start) for c in ".;\n:") + 1
+            hi = min([e for e in (self.text.find(c, s.end) for c in ".;\n") if e >= 0] or [len(self.text)])
+            clause = self.text[lo:hi].lower()
+            if re.search(_TASK_CUE, clause):
+                continue
+            for j in range(k, len(out)):
+                t = out[j]
+                if t.start >= hi:
+                    break
+                new = {"SRC": "OBJ", "TGT": "REF", "NEAR": "POS", "ON": "POS", "IN": "POS"}.get(t.tag)
+                if new is not None:
+                    out[j] = Span(new, t.start, t.end, t.text)
         # "[cup] with [a handle]": two object phrases that together are one catalog name are that object
         joined: list[Span] = []
         for s in out:

@@ -18,7 +18,9 @@ tagged phrases. The tags (what each means is written for annotators in
 - positions: ``POS`` (said of the object phrase before it), ``POS_NEXT``
   (the one after), ``POS_ALL`` (every object phrase just before);
 - ``LIGHT`` and ``CAM``: the words of the lighting and camera requests that
-  still hold at the end, so that read in order they state them.
+  still hold at the end, so that read in order they state them;
+- in instructions, ``NEG`` (words that negate the task itself) and ``EXTRA``
+  (another action or object asked for beyond the one task).
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from dataclasses import dataclass
 
 TAGS: tuple[str, ...] = (
     "OBJ", "ANY", "TOTAL", "REF", "DROP", "SRC", "TGT", "PICK", "NEAR", "ON", "IN",
-    "POS", "POS_NEXT", "POS_ALL", "LIGHT", "CAM",
+    "POS", "POS_NEXT", "POS_ALL", "LIGHT", "CAM", "NEG", "EXTRA",
 )
 """Every tag, in a fixed order (the tagging head's label order depends on it)."""
 
