@@ -70,3 +70,19 @@ def test_lighting_changes(text, delta):
 
 def test_lighting_words_without_amounts_are_left_to_the_rule_reader():
     assert read_lighting_request("slightly darker") is None
+
+
+@pytest.mark.parametrize(
+    ("text", "translate", "rotate"),
+    [
+        ("lower the camera by a centimeter", [0, 0, -1], {}),
+        ("the camera backs off 4 cm", [0, -4, 0], {}),
+        ("move it 25 mm toward the table and 10 mm up", [0, 2.5, 1], {}),
+        ("roll -3 degrees (counter-clockwise)", [0, 0, 0], {"roll": -3}),
+        ("yaw -2", [0, 0, 0], {"yaw": -2}),
+    ],
+)
+def test_more_camera_wordings(text, translate, rotate):
+    t, r = camera(text)
+    assert t == pytest.approx(translate)
+    assert {k: v for k, v in r.items() if abs(v) > 1e-9} == pytest.approx(rotate)

@@ -189,3 +189,21 @@ def test_members_named_after_the_group(vocab):
     listed = read("[[5 things of your choice|ANY]], which must include [[a plum|OBJ]] and [[a bowl|OBJ]]. Put [[the plum|SRC]] "
                   "[[in|IN]] [[the bowl|TGT]].", vocab)
     assert len(objects(listed)) == 5
+
+
+def test_drop_without_a_destination_takes_the_object_out(vocab):
+    ops = read("Put [[the lemon|SRC]] [[on|ON]] [[the towel|TGT]]. Objects: [[lemon|OBJ]], [[towel|OBJ]], [[pear|OBJ]]. "
+               "Drop [[the pear|SRC]].", vocab)
+    assert sorted(objects(ops)) == ["lemon", "towel"] and task(ops)["source"] == "lemon"
+
+
+def test_a_replaced_object_named_again_in_a_corrected_task_stays_out(vocab):
+    ops = read("[[a carrot|OBJ]] and [[a bowl|OBJ]]; swap [[the bowl|DROP]] for [[a basket|OBJ]]. Put [[the carrot|SRC]] "
+               "[[in|IN]] [[the bowl|REF]] - I mean [[in|IN]] [[the basket|TGT]].", vocab)
+    assert sorted(objects(ops)) == ["basket", "carrot"] and task(ops)["target"] == "basket"
+
+
+def test_a_position_taken_back_keeps_its_object(vocab):
+    ops = read("[[A peach|OBJ]] [[near|POS]] [[the mug|REF]] - no, on the right, not near [[the mug|DROP]]. "
+               "[[The mug|REF]] [[goes at the back|POS]]. [[lift|PICK]] [[the peach|SRC]]", vocab)
+    assert "mug" in objects(ops)

@@ -46,6 +46,7 @@ def _clean(text: str) -> str:
     t = re.sub(r"\b(twenty|thirty|forty|fifty|sixty|seventy|eighty|ninety)[\s-]+(one|two|three|four|five|six|seven|eight|nine)\b",
                lambda m: str(_NUMBER_WORDS[m.group(1)] + _NUMBER_WORDS[m.group(2)]), t)
     t = re.sub(r"\bhalf an? (?=cm|centimet|mm|millimet|deg|inch)", "0.5 ", t)
+    t = re.sub(r"\b(?:a|an|one)\s+(?=(?:cm|centimet\w*|mm|millimet\w*|degree|deg|inch)\b)", "1 ", t)  # "by a centimeter"
     t = re.sub(r"\b(" + "|".join(sorted(_NUMBER_WORDS, key=len, reverse=True)) + r")\b(?!\s+(?:of|as)\b)",
                lambda m: str(_NUMBER_WORDS[m.group(1)]), t)
     t = re.sub(r"(\d),(\d)", r"\1.\2", t)  # "1,5 cm"
@@ -58,7 +59,7 @@ _TRANSLATE = [  # (pattern, axis, sign) in the description frame: x right, y for
     (r"\b(?:to the right|rightwards?|right)\b", 0, 1),
     (r"\b(?:to the left|leftwards?|left)\b", 0, -1),
     (r"\b(?:forwards?|ahead|closer|nearer|close to (?:the )?table|toward(?:s)? (?:the )?table|towards? (?:the )?scene|in(?:wards?)?|push(?:ed)? in|dolly(?:ing|ied)? in|zoom(?:ed)? in)\b", 1, 1),
-    (r"\b(?:backwards?|back|further|farther|away from (?:the )?table|away|out(?:wards?)?|pull(?:ed|s)? back|dolly(?:ing|ied)? out|zoom(?:ed)? out|retreat)\b", 1, -1),
+    (r"\b(?:backwards?|backs? off|backs|backing off|back|further|farther|away from (?:the )?table|away|out(?:wards?)?|pull(?:ed|s)? back|dolly(?:ing|ied)? out|zoom(?:ed)? out|retreat)\b", 1, -1),
     (r"\b(?:up(?:wards?)?|higher|raise[ds]?|rais(?:ing)|lift(?:ed|s)?|elevate[ds]?|above|boom up|crane up)\b", 2, 1),
     (r"\b(?:down(?:wards?)?|lower(?:ed|s)?|drop(?:ped|s)?|descend(?:ed|s)?|below|sink|sunk)\b", 2, -1),
 ]
@@ -143,6 +144,7 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
     t = re.sub(r"\b(?:camera|cam|view|viewpoint|the|it|by|about|around|roughly|approximately|of|move|moved|moves|shift|shifted|"
                r"shifts|translate[ds]?|translation|position|rotation|rotate|nudge[ds]?|slightly|a bit|a little|please)\b",
                lambda m: " rotate " if m.group(0).startswith("rotat") else " ", t)
+    t = re.sub(r"[ \t]+", " ", t)
     translate = [0.0, 0.0, 0.0]
     rotate = [0.0, 0.0, 0.0]
     read_any = False
@@ -183,7 +185,9 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
         rot = _rotation_axis(part)
         if rot is not None and unit != "cm":
             axis, sign = rot
-            rotate[axis] += sign * value
+            worded = re.search(r"\b(?:left|right|up|down|upwards?|downwards?|clockwise|counter[\s-]?clockwise|anti[\s-]?clockwise|ccw|cw)\b", part)
+            # "roll -3 degrees (counter-clockwise)": the word and the sign say one thing; "pan -2": the sign
+            rotate[axis] += sign * abs(value) if worded else sign * value
             read_any = True
             continue
         if unit == "deg":

@@ -134,6 +134,8 @@ class _Assembly:
         self.vocab = vocab
         self.mentions: list[_Mention] = []
         self.objects: list[_Object] = []
+        self.removed: set[str] = set()
+        """Names of objects a taken-back mention removed ("replace the towel with a plate")."""
 
     def retag(self) -> None:
         """What a phrase's own words say about its tag: "not a bowl" takes it back, "random filler up to five
@@ -149,6 +151,11 @@ class _Assembly:
             tag = s.tag
             if tag == "OBJ" and re.search(r"\b(?:not|no|without|minus|except)\s+$", before):
                 tag = "DROP"
+            elif tag == "SRC" and re.search(
+                r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|nix)\s+$",
+                before,
+            ) and not any(t.tag in RELATION_TAGS and t.start > s.end and self._same_sentence(s.end, t.start) for t in spans):
+                tag = "DROP"  # "Drop the peach." with no destination: taken out of the scene, no task
             elif tag in ("OBJ", "REF") and re.search(
                 r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|cut|nix)"
                 r"\s+$", before
@@ -441,6 +448,7 @@ class _Assembly:
                 earlier = [o for o in self._find(m.name) if o.mentions and o.mentions[0].span.start < m.span.start]
                 if earlier:
                     self.objects.remove(earlier[-1])
+                    self.removed.add(m.name)
 
     def add_task_objects(self, task: dict[str, Any]) -> None:
         """The task's objects are the scene's: added when no phrase put them there; positions said of them kept."""
@@ -489,7 +497,7 @@ class _Assembly:
                 for pos in m.positions:
                     if free:
                         free.pop(0).position = dict(pos)
-            elif not m.unknown:
+            elif not m.unknown and not any(self._same(r, m.name) for r in self.removed):
                 self.objects.append(_Object(m.name, False, dict(m.position) if m.position else None, [m]))
         for o in self.objects:  # "beside the cup": the scene's one cup
             ref = (o.position or {}).get("reference")
