@@ -3,8 +3,11 @@
     LP_NUM_THREADS=1 OMP_NUM_THREADS=1 PYTHONPATH=. python benchmarks/bench_paraphrase.py [--pairs 2000]
 
 Target (issue 4): >= 400 validations per second for the similarity part, batched,
-on 2 CPU cores. Prints the machine's load average and CPU time too: on a shared
-machine wall-clock rates move with the load; rates per CPU-second much less.
+on 2 CPU cores. Each precision runs with one torch thread and with every core
+(``--threads``), side by side in one process: the paraphrase stage embeds with
+every core (``paraphrase.threads: null``). Prints the machine's load average and
+CPU time too: on a shared machine wall-clock rates move with the load; rates per
+CPU-second much less.
 """
 
 from __future__ import annotations
@@ -56,6 +59,7 @@ def main() -> None:
     ap.add_argument("--pairs", type=int, default=2000)
     ap.add_argument("--batch-sizes", default="32,64,128")
     ap.add_argument("--precisions", default="fp32,bf16", help="fp32, bf16 (side by side)")
+    ap.add_argument("--threads", default=f"1,{os.cpu_count() or 1}", help="torch threads to compare")
     args = ap.parse_args()
 
     print(f"torch threads {torch.get_num_threads()}, cpu count {os.cpu_count()}, "
@@ -69,17 +73,19 @@ def main() -> None:
 
     embedder.encode([c for _, c in pairs[:64]])  # warm-up
     print(f"{len(pairs)} pairs, {len({t for p in pairs for t in p})} distinct texts")
-    for precision in args.precisions.split(","):
-        for bs in (int(b) for b in args.batch_sizes.split(",")):
-            embedder.batch_size = bs
-            validator = ParaphraseValidator(embedder, precision=precision)  # a fresh embedding cache
-            t0, c0 = time.perf_counter(), time.process_time()
-            raw = validator.similarities(pairs)
-            low = [p for p, s in zip(pairs, raw, strict=True) if s < validator.threshold]
-            validator.canonical_similarities(low)
-            wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-            print(f"similarity part, {precision}, batch {bs:4d}: {rate(len(pairs), wall, cpu)}"
-                  f"  ({len(low)} below the threshold re-compared with canonical names)")
+    for threads in dict.fromkeys(int(t) for t in args.threads.split(",")):
+        for precision in args.precisions.split(","):
+            for bs in (int(b) for b in args.batch_sizes.split(",")):
+                embedder.batch_size = bs
+                # a fresh embedding cache for every run
+                validator = ParaphraseValidator(embedder, precision=precision, threads=threads)
+                t0, c0 = time.perf_counter(), time.process_time()
+                raw = validator.similarities(pairs)
+                low = [p for p, s in zip(pairs, raw, strict=True) if s < validator.threshold]
+                validator.canonical_similarities(low)
+                wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+                print(f"similarity part, {precision}, {threads} thread(s), batch {bs:4d}: {rate(len(pairs), wall, cpu)}"
+                      f"  ({len(low)} below the threshold re-compared with canonical names)")
     embedder.batch_size = 64
 
     parser = InstructionParser()
@@ -87,11 +93,11 @@ def main() -> None:
     for _, c in pairs:
         parser.parse(c)
     print(f"structural parse:                    {rate(len(pairs), time.perf_counter() - t0)}")
-    validator = ParaphraseValidator(embedder, precision=resolve_precision("auto"))
+    validator = ParaphraseValidator(embedder, precision=resolve_precision("auto"), threads=os.cpu_count())
     t0, c0 = time.perf_counter(), time.process_time()
     verdicts = validator.validate_pairs(pairs)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    print(f"full validation ({validator.precision}, both checks): {rate(len(pairs), wall, cpu)}; "
+    print(f"full validation ({validator.precision}, {os.cpu_count()} threads, both checks): {rate(len(pairs), wall, cpu)}; "
           f"{sum(v.valid for v in verdicts)}/{len(verdicts)} valid")
 
 

@@ -32,6 +32,11 @@ class ParaphraseConfig(BaseModel):
         "verdicts do not depend on the CPU; bf16 autocast (about 1.6x faster where the CPU has native "
         "bf16, moves MiniLM similarities by up to 0.002) only when named.",
     )
+    threads: int | None = Field(
+        default=None, ge=1, le=256,
+        description="Torch threads while embedding; null: every core of the machine (the paraphrase stage runs "
+        "alone, unlike the rollout's workers, which the Makefile keeps at one thread each).",
+    )
     second_reading: bool = Field(
         default=True,
         description="Where the reader cannot read an original or a candidate, read it again with the span "

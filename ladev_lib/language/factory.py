@@ -5,6 +5,8 @@
 
 from __future__ import annotations
 
+import os
+
 from ladev_lib.catalog import Catalog
 from ladev_lib.errors import ConfigError
 from ladev_lib.language.config import ParaphraseConfig
@@ -41,4 +43,5 @@ def make_validator(
         catalog=catalog,
         precision=resolve_precision(cfg.precision, cfg.device),
         second_reading=cfg.second_reading,
+        threads=cfg.threads or os.cpu_count() or 1,
     )

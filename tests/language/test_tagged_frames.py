@@ -84,3 +84,15 @@ def test_an_object_joined_to_the_task_object_is_more_than_the_task():
     assert not both.ok
     steps = frame("grab [[the cup|SRC]] and put it [[on|ON]] [[the tray|TGT]]")
     assert steps.ok and steps.task == "put_on"
+
+
+def test_embedding_threads_do_not_change_verdicts():
+    from ladev_lib.language.embeddings import load_embedder
+    from ladev_lib.language.validator import ParaphraseValidator
+
+    pairs = [("put the mug in the sink", "could you drop the mug into the sink"),
+             ("pick up the apple", "grab the pear"), ("move the pen near the cup", "slide the pen next to the cup")]
+    one = ParaphraseValidator(load_embedder(), threshold=0.45, precision="fp32", threads=1).validate_pairs(pairs)
+    two = ParaphraseValidator(load_embedder(), threshold=0.45, precision="fp32", threads=2).validate_pairs(pairs)
+    assert [round(v.similarity, 4) for v in one] == [round(v.similarity, 4) for v in two]
+    assert [v.valid for v in one] == [v.valid for v in two]
