@@ -4,8 +4,9 @@
         --task pick_up --render scene.png
     ladev scene "ADD coke can to (0.1, 0.05)" -i "pick up the coke can" llm=openai
 
-Prints the LLM's operations, the base instruction, the objects and the spec;
-exits 1 with the reason when the scene is rejected.
+Prints how the offline reader read the text (the span tagger's marks, with the
+default ``compile.reader: tagged``), the operations, the base instruction, the
+objects and the spec; exits 1 with the reason when the scene is rejected.
 """
 
 from __future__ import annotations
@@ -48,8 +49,18 @@ def find_renderer() -> Renderer | None:
     return renderer
 
 
-def _print_text(result: CompiledScene, description: str, backend: str) -> None:
+def _reading(description: str) -> str:
+    """The description with the span tagger's marks: what the offline tagged reader took each phrase to say."""
+    from ladev_lib.language.tagging.markup import to_markup
+    from ladev_lib.language.tagging.model import load_tagger
+
+    return to_markup(description, load_tagger().tag(description))
+
+
+def _print_text(result: CompiledScene, description: str, backend: str, reading: str | None = None) -> None:
     click.echo(f"Description: {description}")
+    if reading is not None:
+        click.echo(f"Read as:     {reading}")
     if result.operations is not None:
         click.echo(f"\nOperations ({backend}, {'cached' if result.cached and not result.calls else 'new call'}):")
         click.echo(json.dumps(json.loads(result.operations.to_json()), indent=2))
@@ -122,7 +133,8 @@ def command(
     if as_json:
         click.echo(json.dumps(result.as_dict(), indent=2))
     else:
-        _print_text(result, description, backend)
+        tagged = tools.llm.backend == "offline" and tools.compiler.config.reader == "tagged"
+        _print_text(result, description, backend, _reading(description) if tagged else None)
     if result.spec is None:
         raise SystemExit(1)
     if save_spec is not None:

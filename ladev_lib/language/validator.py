@@ -158,8 +158,8 @@ def structure_mismatch(expected: InstructionParse, got: InstructionParse) -> str
 
 _DEFINITE = re.compile(
     r"negated|takes the object away|is not one of the tasks|without a destination|to a person|"
-    r"relation '(?:behind|under|underneath|below|beneath|above|over|off|off of|out of|away from|in front of|"
-    r"left of|right of|across|around|between|against|opposite|outside|beyond|past|toward|towards)' is none of"
+    r"relation '(?:to the |on the )?(?:behind|under|underneath|below|beneath|above|over|off|off of|out of|away from|"
+    r"in front of|left of|right of|across|around|between|against|opposite|outside|beyond|past|toward|towards)' is none of"
 )
 """Reasons of the parser that name what a sentence does instead of the task (a negation, another relation,
 taking the object away, another action): it did read the sentence; the span tagger is not asked again."""

@@ -96,3 +96,13 @@ def test_scene_render_writes_a_picture_of_the_scene(conf, tmp_path):
     assert "rendered to" in result.output
     image = np.asarray(Image.open(tmp_path / "scene.png"))
     assert image.ndim == 3 and image.shape[0] >= 128 and image.std() > 10  # a picture, not a blank
+
+
+def test_scene_shows_how_the_tagged_reader_read_the_text(conf):
+    text = "A bowl - no, make that a basket - and a plum. The plum goes in the basket."
+    result = CliRunner().invoke(cli, ["scene", text, "--no-cache", "--config-dir", conf])
+    assert result.exit_code == 0, result.output
+    read_as = next(line for line in result.output.splitlines() if line.startswith("Read as:"))
+    assert "[[a basket|OBJ]]" in read_as and "|SRC]]" in read_as
+    rules = CliRunner().invoke(cli, ["scene", text, "compile.reader=rules", "--no-cache", "--config-dir", conf])
+    assert rules.exit_code == 0 and "Read as:" not in rules.output

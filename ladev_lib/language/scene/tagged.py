@@ -167,9 +167,13 @@ class _Assembly:
                 tag = "TOTAL"
             elif tag == "TOTAL" and re.search(r"\b(?:any|random|other|more|extra|additional|arbitrary)\b", low):
                 tag = "ANY"
-            elif tag in ("CAM", "LIGHT") and re.fullmatch(r"\(\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*,\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*\)", low) \
-                    and re.search(r"(?:\bto|\bat|@)\s*$", before):
-                tag = "POS"  # "ADD soup can to (5 cm, -10 cm)": where the object goes
+            elif tag in ("CAM", "LIGHT") and re.fullmatch(r"\(?\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*,\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*\)?", low) \
+                    and re.search(r"(?:\bto|\bat|@)\s*\(?\s*$", before):
+                # "ADD soup can to (5 cm, -10 cm)": where the object goes (brackets included)
+                start = s.start - 1 if self.text[max(0, s.start - 1):s.start] == "(" else s.start
+                end = s.end + 1 if self.text[s.end:s.end + 1] == ")" else s.end
+                s = Span(s.tag, start, end, self.text[start:end])
+                tag = "POS"
             if tag == "ANY" and not _NUMBER.search(_norm(s.text, self.vocab)) and k + 1 < len(spans):
                 nxt = spans[k + 1]
                 if nxt.tag == "TOTAL" and re.fullmatch(r"\s*[:=]\s*", self.text[s.end:nxt.start]):
