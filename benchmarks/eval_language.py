@@ -142,7 +142,7 @@ NOTES = (
     "the task, a negation of it and anything asked beyond it, and each marked phrase is read by the parser "
     "alone. Where the parser did read the sentence and names what it does instead of the task (a negation, a "
     "spatial relation outside the four, taking the object away, another action), its reading stands. The "
-    "tagger was trained on 1,386 annotated instructions written for it (`training/instruction_tagger/`) with "
+    "tagger was trained on 1,905 annotated instructions written for it (`training/instruction_tagger/`) with "
     "the scene rows; none of the sets below. The 'parser alone' column is the same validator without the "
     "second reading.",
     "`open_vocab_holdout` was written before it was first scored and scored once: precision 0.889, "
@@ -406,7 +406,14 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
     "scene_descriptions_holdout13": (
         ROOT / "tests/data/scene_descriptions_holdout13.jsonl",
         "thirteenth held-out set (80; seven styles), written blind while the tagged reader was built; the rule "
-        "reader scored once at 152d3a6, the tagged reader once before its rows were read",
+        "reader scored once at 152d3a6, the tagged reader once (at 246068e) before its rows were read; the tagged "
+        "reader's assembly was then fixed on its errors (a development set since)",
+    ),
+    "scene_descriptions_holdout14": (
+        ROOT / "tests/data/scene_descriptions_holdout14.jsonl",
+        "fourteenth held-out set (80; eight styles, data-like snippets among them), written blind; the rule reader "
+        "scored once at 152d3a6, the tagged reader once at 1bcc10b (its final form this session), before its rows "
+        "were read",
     ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
@@ -459,19 +466,14 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
     ],
     "scene_descriptions_holdout13": [
         _figures("rules, first (blind, 152d3a6)", 0.800, (0.950, 0.988, 0.988, 0.963, 0.925, 0.988, 0.950, 1.000)),
-        _figures("tagged, first (blind)", 0.850, (0.975, 1.000, 1.000, 0.963, 0.913, 1.000, 1.000, 1.000)),
+        _figures("tagged, first (blind, 246068e)", 0.850, (0.975, 1.000, 1.000, 0.963, 0.913, 1.000, 1.000, 1.000)),
+    ],
+    "scene_descriptions_holdout14": [
+        _figures("rules, first (blind, 152d3a6)", 0.675, (0.838, 0.925, 0.887, 0.925, 0.887, 0.938, 0.900, 0.950)),
+        _figures("tagged, first (blind, 1bcc10b)", 0.863, (0.963, 0.988, 0.963, 0.988, 0.925, 1.000, 1.000, 0.988)),
     ],
 }
 TAGGED_NOTES = (
-    "LADEV now reads each sentence with the instruction parser and, where the parser cannot read an original "
-    "or a candidate (\"not understood\"), reads it again with the span tagger (`paraphrase.second_reading`, "
-    "`ladev_lib/language/tagged_frames.py`): the tagger marks the task's object and destination, the words of "
-    "the task, a negation of it and anything asked beyond it, and each marked phrase is read by the parser "
-    "alone. Where the parser did read the sentence and names what it does instead of the task (a negation, a "
-    "spatial relation outside the four, taking the object away, another action), its reading stands. The "
-    "tagger was trained on 1,386 annotated instructions written for it (`training/instruction_tagger/`) with "
-    "the scene rows; none of the sets below. The 'parser alone' column is the same validator without the "
-    "second reading.",
     "The default offline reader (`compile.reader: tagged`) is a learned span tagger with the value rules: "
     "all-MiniLM-L6-v2 (the embedding model the project ships) with low-rank adapters and a tagging head marks "
     "which phrases put objects in the scene, which are only mentioned again or taken back, the random fill and "
@@ -480,24 +482,19 @@ TAGGED_NOTES = (
     "from the marked phrases by `ladev_lib/language/scene/tagged.py` (catalog names, counts, regions, amounts "
     "and directions read by rules, grounding by the instruction reader). The rule reader of the earlier rounds "
     "stays available as `compile.reader: rules`.",
-    "The tagger was trained on 2,280 annotated descriptions written for it by ten helpers that read only the "
-    "annotation guide and the dev README's conventions, plus 500 rows of the offline writer's own styles "
-    "(`training/scene_tagger/`, `ladev train-reader`). No row of any set below was used to train it: for the "
-    "tagged reader every set here is unseen text. Its assembly rules were developed while reading its errors "
-    "on the dev set only (the dev column is a development figure for both readers); the held-out sets' rows "
-    "were not read while it was built, only their pooled scores watched, so its figures on them are "
-    "close to held-out ones, and `scene_descriptions_holdout13` was scored once, blind, for both readers.",
+    "The tagger was trained on 4,100 annotated descriptions (3,600 written for it by sixteen helpers that read "
+    "only the annotation guide and the dev README's conventions, 500 of the offline writer's own styles) and "
+    "1,905 annotated instructions (`training/`, `ladev train-reader`). No row of any set below was used to "
+    "train it. Its assembly rules were developed while reading its errors on the dev set and, after its first "
+    "score, on `scene_descriptions_holdout13`; the rows of sets 1-12 were never read while it was built (only "
+    "their pooled scores watched), and `scene_descriptions_holdout14` was scored once, blind, at the end. For "
+    "the rule reader, sets 1-12 and 13 are development sets (their first scores are its held-out figures); the "
+    "pooled 'rules now' line therefore mixes its development figures with one blind set.",
+    "First scores on blind sets, rule reader then tagged reader: round 13 (80 descriptions) 0.800 and 0.850; "
+    "round 14 (80) 0.675 and 0.863. The target (0.95 on text not tuned on) is not met; the tagged reader's "
+    "weakest fields on unseen text are the camera (0.93-0.96) and the object count (0.92-0.98).",
 )
 SCENE_NOTES = (
-    "LADEV now reads each sentence with the instruction parser and, where the parser cannot read an original "
-    "or a candidate (\"not understood\"), reads it again with the span tagger (`paraphrase.second_reading`, "
-    "`ladev_lib/language/tagged_frames.py`): the tagger marks the task's object and destination, the words of "
-    "the task, a negation of it and anything asked beyond it, and each marked phrase is read by the parser "
-    "alone. Where the parser did read the sentence and names what it does instead of the task (a negation, a "
-    "spatial relation outside the four, taking the object away, another action), its reading stands. The "
-    "tagger was trained on 1,386 annotated instructions written for it (`training/instruction_tagger/`) with "
-    "the scene rows; none of the sets below. The 'parser alone' column is the same validator without the "
-    "second reading.",
     "`scene_descriptions_holdout` (30 rows, `tests/data/`) was written in our own words before the reader "
     "was changed for issue 11 and scored once with the code of commit 8bda385: scene-exact 0.767. Two of "
     "those failures were the set's own errors (tasks the compiler rightly rejects as physically impossible: "
@@ -592,20 +589,21 @@ def scene_section() -> list[str]:
 
     lines += [
         "### All sets: scene-exact", "",
-        "| set | rows | rule reader, first score | rule reader now (developed on) | tagged reader now |",
-        "|---|---|---|---|---|",
+        "| set | rows | rule reader, first score | rule reader now (developed on) | tagged reader, first score | "
+        "tagged reader now |",
+        "|---|---|---|---|---|---|",
     ]
     for name in measured:
-        rules_first = first(name, "first") if name != "scene_descriptions_holdout13" else first(name, "rules")
+        rules_first = first(name, "rules") if first(name, "rules") != "-" else first(name, "first")
         lines.append(
             f"| {name} | {counts[name]} | {rules_first} | {float(measured[name]['rules']['scene_exact']):.3f} | "  # type: ignore[arg-type]
-            f"**{float(measured[name]['tagged']['scene_exact']):.3f}** |"  # type: ignore[arg-type]
+            f"{first(name, 'tagged')} | **{float(measured[name]['tagged']['scene_exact']):.3f}** |"  # type: ignore[arg-type]
         )
-    held = [n for n in measured if n != "scene_descriptions_dev"]
+    unseen = [n for n in measured if n not in ("scene_descriptions_dev", "scene_descriptions_holdout13")]
     for label in ("tagged", "rules"):
-        total = sum(counts[n] for n in held)
-        exact = sum(float(measured[n][label]["scene_exact"]) * counts[n] for n in held) / max(total, 1)  # type: ignore[arg-type]
-        lines.append(f"| held-out sets pooled ({label}) | {total} | | | {exact:.3f} |")
+        total = sum(counts[n] for n in unseen)
+        exact = sum(float(measured[n][label]["scene_exact"]) * counts[n] for n in unseen) / max(total, 1)  # type: ignore[arg-type]
+        lines.append(f"| held-out sets 1-12 and 14 pooled, {label} reader now | {total} | | | | {exact:.3f} |")
     lines.append("")
     for name, (rows_path, about) in SCENE_SETS.items():
         lines += [f"### {name}: {about}", ""]

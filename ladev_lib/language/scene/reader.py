@@ -596,14 +596,9 @@ def read_description(
         out["object_set"] = reading.object_set
     stated = found.task
     if instruction:
-        parsed = _instruction_task(instruction, vocab)
-        if parsed is None:
-            out["error"] = (
-                f"the instruction {instruction!r} is none of the four task forms "
-                "(pick up X; move X near Y; put X on Y; put X in Y)"
-            )
+        out.update(explicit_task(instruction, vocab))
+        if "error" in out:
             return out
-        out["task"] = parsed
     elif stated is not None:
         out["task"] = stated
     elif found.statement and (retry := _task_in_scene(found.statement, reading, vocab)) is not None:
@@ -726,6 +721,15 @@ def _task_names_described(task: dict[str, Any], reading: _Reading, vocab: Vocabu
         fuller = {m for m in unknown if m != name and m.split()[-1] == name.split()[-1] and m.endswith(name)}
         if len(fuller) == 1:
             task[key] = fuller.pop()
+
+
+def explicit_task(instruction: str, vocab: Vocabulary) -> dict[str, Any]:
+    """``{"task": ...}`` for an explicit instruction (it wins over what the text states), or ``{"error": ...}``."""
+    parsed = _instruction_task(instruction, vocab)
+    if parsed is None:
+        return {"error": f"the instruction {instruction!r} is none of the four task forms "
+                         "(pick up X; move X near Y; put X on Y; put X in Y)"}
+    return {"task": parsed}
 
 
 def _instruction_task(instruction: str, vocab: Vocabulary) -> dict[str, Any] | None:

@@ -735,7 +735,7 @@ def assemble(
     task: str | None = None,
 ) -> dict[str, Any]:
     """Tagged spans of ``text`` -> a SceneOperations-shaped dict (objects, task, lighting, camera)."""
-    from ladev_lib.language.scene.reader import _instruction_task
+    from ladev_lib.language.scene.reader import explicit_task
 
     a = _Assembly(text, spans, vocab)
     a.retag()
@@ -751,14 +751,9 @@ def assemble(
         out["object_set"] = "simpler"
     stated = a.task()
     if instruction:
-        parsed = _instruction_task(instruction, vocab)
-        if parsed is None:
-            out["error"] = (
-                f"the instruction {instruction!r} is none of the four task forms "
-                "(pick up X; move X near Y; put X on Y; put X in Y)"
-            )
+        out.update(explicit_task(instruction, vocab))
+        if "error" in out:
             return out
-        out["task"] = parsed
     elif stated is not None:
         out["task"] = stated
     elif task:
