@@ -86,3 +86,12 @@ def test_more_camera_wordings(text, translate, rotate):
     t, r = camera(text)
     assert t == pytest.approx(translate)
     assert {k: v for k, v in r.items() if abs(v) > 1e-9} == pytest.approx(rotate)
+
+
+def test_vectors_keys_and_levels():
+    t, _ = camera("translate_cm = 1, -3, 0")
+    assert t == pytest.approx([1, -3, 0])
+    _, r = camera("yaw;-4;pitch;2")
+    assert r["yaw"] == pytest.approx(-4) and r["pitch"] == pytest.approx(2)
+    op = read_lighting_request("dim it to a quarter of normal brightness")
+    assert op is not None and op["intensity_delta"] == pytest.approx(-0.75)

@@ -207,3 +207,32 @@ def test_a_position_taken_back_keeps_its_object(vocab):
     ops = read("[[A peach|OBJ]] [[near|POS]] [[the mug|REF]] - no, on the right, not near [[the mug|DROP]]. "
                "[[The mug|REF]] [[goes at the back|POS]]. [[lift|PICK]] [[the peach|SRC]]", vocab)
     assert "mug" in objects(ops)
+
+
+def test_object_and_destination_in_one_phrase(vocab):
+    ops = read("ADD [[pear|OBJ]]\nADD [[bowl|OBJ]]\nTASK [[put_in|IN]] [[pear bowl|SRC]]", vocab)
+    assert task(ops) == {"type": "put_in", "source": "pear", "target": "bowl"}
+
+
+def test_an_arrow_takes_its_relation_from_the_destination(vocab):
+    into = read("[[plum|OBJ]], [[basket|OBJ]]; task: [[plum|SRC]] [[->|ON]] [[basket|TGT]]", vocab)
+    onto = read("[[plum|OBJ]], [[plate|OBJ]]; task: [[plum|SRC]] [[->|IN]] [[plate|TGT]]", vocab)
+    assert task(into)["type"] == "put_in" and task(onto)["type"] == "put_on"
+
+
+def test_a_corrected_count_replaces_the_first(vocab):
+    ops = read("[[Three pears|OBJ]] and [[a mug|OBJ]]. Sorry, just [[two pears|OBJ]]. [[pick up|PICK]] [[a pear|SRC]]", vocab)
+    assert objects(ops).count("pear") == 2
+
+
+def test_remove_it_after_an_object_takes_it_out(vocab):
+    ops = read("[[a mug|OBJ]], [[a fork|OBJ]], [[a lemon|OBJ]]. Not [[the fork|REF]], remove it. [[lift|PICK]] [[the lemon|SRC]]",
+               vocab)
+    assert sorted(objects(ops)) == ["lemon", "mug"]
+
+
+def test_separate_motions_without_a_second_number_stay_apart(vocab):
+    ops = read("[[a mug|OBJ]]. [[Lower the camera 2 cm|CAM]] and [[tilt it up a couple of degrees|CAM]]. "
+               "[[pick up|PICK]] [[the mug|SRC]]", vocab)
+    cam = [op for op in ops["operations"] if op["op"] == "move_camera"][0]
+    assert cam["translation_m"] == pytest.approx([0.0, 0.0, -0.02]) and cam["rotation_deg"][1] == pytest.approx(-2.0)

@@ -47,6 +47,7 @@ def _clean(text: str) -> str:
                lambda m: str(_NUMBER_WORDS[m.group(1)] + _NUMBER_WORDS[m.group(2)]), t)
     t = re.sub(r"\bhalf an? (?=cm|centimet|mm|millimet|deg|inch)", "0.5 ", t)
     t = re.sub(r"\b(?:a|an|one)\s+(?=(?:cm|centimet\w*|mm|millimet\w*|degree|deg|inch)\b)", "1 ", t)  # "by a centimeter"
+    t = re.sub(r"\ba couple(?: of)?\s+(?=(?:cm|centimet\w*|mm|millimet\w*|degrees?|deg)\b)", "2 ", t)  # "a couple of degrees"
     t = re.sub(r"\b(" + "|".join(sorted(_NUMBER_WORDS, key=len, reverse=True)) + r")\b(?!\s+(?:of|as)\b)",
                lambda m: str(_NUMBER_WORDS[m.group(1)]), t)
     t = re.sub(r"(\d),(\d)", r"\1.\2", t)  # "1,5 cm"
@@ -148,8 +149,16 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
     translate = [0.0, 0.0, 0.0]
     rotate = [0.0, 0.0, 0.0]
     read_any = False
-    # axis keys with signed values: "x: -1", "dz -4cm", "yaw: +3", "z_cm: 1.5", "pitch_deg = 2"
-    keyed = re.compile(rf"\b(dx|dy|dz|x|y|z|d?yaw|d?pitch|d?roll|pan|tilt|up|down|left|right|forward|back)(?:_(cm|mm|deg))?\s*[:=]\s*({_NUM})\s*(cm|mm|deg(?:rees?)?)?")
+    # "translate_cm = 0, -3, 0", "translate_cm": [0, 0, 5]: [x right, y forward, z up]
+    vector = re.search(rf"\btranslat\w*?(?:_(cm|mm|m))?\s*[:=]\s*\[?\s*({_NUM})\s*[,;]\s*({_NUM})\s*[,;]\s*({_NUM})", t)
+    if vector is not None:
+        scale = {"mm": 0.1, "m": 100.0}.get(vector.group(1) or "", 1.0)
+        for k in range(3):
+            translate[k] += float(vector.group(k + 2)) * scale
+        read_any = True
+        t = t[: vector.start()] + " " + t[vector.end():]
+    # axis keys with signed values: "x: -1", "dz -4cm", "yaw: +3", "z_cm: 1.5", "pitch_deg = 2", "yaw;-4"
+    keyed = re.compile(rf"\b(dx|dy|dz|x|y|z|d?yaw|d?pitch|d?roll|pan|tilt|up|down|left|right|forward|back)(?:_(cm|mm|deg))?\s*[:=;]\s*({_NUM})\s*(cm|mm|deg(?:rees?)?)?")
     for m in keyed.finditer(t):
         key, unit = m.group(1), m.group(2) or m.group(4) or ""
         key = key[1:] if key in ("dyaw", "dpitch", "droll") else key
@@ -236,6 +245,17 @@ def read_lighting_request(text: str) -> dict[str, Any] | None:
     if level is not None:
         value = float(level.group(1) or level.group(2))
         return {"op": "set_lighting", "intensity_delta": round(value / 100 - 1.0, 4)}
+    # "down to a quarter of normal brightness", "two thirds of the default"
+    part = re.search(
+        r"\b(a quarter|one quarter|a third|one third|a fifth|a tenth|half|two thirds|three quarters|(\d+) (?:thirds|quarters|fifths))"
+        r"\s+of\s+(?:the\s+)?(?:its\s+)?(?:normal|default|usual|full|original|standard|current|regular|nominal)\b", t
+    )
+    if part is not None:
+        share = _FRACTIONS.get(part.group(1))
+        if share is None and part.group(2):
+            share = int(part.group(2)) / {"third": 3, "quarter": 4, "fifth": 5}[part.group(1).split()[1].rstrip("s")]
+        if share is not None:
+            return {"op": "set_lighting", "intensity_delta": round(share - 1.0, 4)}
     factor = re.search(
         rf"(?:\bx\s*|\btimes\s+)({_NUM})\b|({_NUM})\s*(?:x\b|times\b)|\b(?:factor|scale|multiplier|gain)\s*(?:of|to|[:=])?\s*({_NUM})", t
     )

@@ -161,6 +161,11 @@ class _Assembly:
                 r"\s+$", before
             ):
                 tag = "DROP"  # "actually, drop the pepsi can"
+            elif tag in ("OBJ", "REF") and re.match(
+                r"\s*(?:[-\u2014\u2013,;:]|\.\s)?\s*(?:please\s+)?(?:remove|drop|delete|take out|lose|ditch|get rid of)\s+"
+                r"(?:it|that one|that)\b", self.text[s.end:s.end + 40], re.IGNORECASE
+            ):
+                tag = "DROP"  # "Not the coffee can - remove it from the scene."
             elif tag == "ANY" and re.search(r"\bup to\s+$", before):
                 tag = "TOTAL"  # "fill the table up to six objects with random stuff"
             elif tag == "ANY" and re.search(r"\b(?:up to|in total|total|in all|overall|altogether)\b", low) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b", low):
@@ -444,6 +449,13 @@ class _Assembly:
             if m.name is None:
                 continue
             if m.tag == "OBJ":
+                before = self.text[max(0, m.span.start - 40):m.span.start].lower()
+                if self._find(m.name) and re.search(
+                    r"\b(?:correction|actually|instead|make (?:that|it)|i mean|sorry|no|rather|just|only)\b[^.;]*$", before
+                ) and re.match(r"(?i)\s*(?:just\s+|only\s+)?(?:\d+|one|two|three|four|five|a|an|a single)\b", m.span.text):
+                    # "two lemons ... correction: just one lemon": the new count replaces the old one
+                    for o in self._find(m.name):
+                        self.objects.remove(o)
                 for i in range(max(m.count, 1)):
                     # one position for the group is said of each; several are taken in turn
                     pos = m.positions[0] if len(m.positions) == 1 else (m.positions[i] if i < len(m.positions) else None)
@@ -520,11 +532,19 @@ class _Assembly:
 
     # -- the task ---------------------------------------------------------------
     def task_type(self) -> str | None:
-        rels = [RELATION_TAGS[s.tag] for s in self.spans if s.tag in RELATION_TAGS]
+        rels = [(RELATION_TAGS[s.tag], s) for s in self.spans if s.tag in RELATION_TAGS]
         if not rels:
             return None
-        placing = [r for r in rels if r != "pick_up"]
-        return placing[-1] if placing else rels[-1]
+        placing = [r for r in rels if r[0] != "pick_up"]
+        kind, said = placing[-1] if placing else rels[-1]
+        if kind in ("put_on", "put_in") and re.fullmatch(r"\s*(?:->|→|=>|>|to|-->|—>)\s*", said.text):
+            # "orange -> basket": an arrow says where, the destination says how (into a container, onto a top)
+            tgt = self._phrase("TGT")
+            name = self._task_phrase(tgt) if tgt is not None else None
+            oid = self.vocab.name_ids.get(name or "") or next((c for c, d in self.vocab.ids.items() if d == name), None)
+            if oid is not None:
+                kind = "put_in" if oid in self.vocab.containers else "put_on"
+        return kind
 
     def _phrase(self, tag: str) -> _Mention | None:
         found = [m for m in self.mentions if m.tag == tag]
@@ -563,6 +583,12 @@ class _Assembly:
             kind = "pick_up" if tgt_m is None else "move_near"
         src = self._task_phrase(src_m)
         tgt = self._task_phrase(tgt_m, exclude=src_m) if kind != "pick_up" else None
+        if kind != "pick_up" and tgt_m is None and src_m is not None:
+            # "put_in dice mug", "put_on;apple;sponge": the object and the destination in one phrase
+            both = [canonical_name(self.vocab, m.group(0)) for m in self.vocab.name_pattern.finditer(
+                _norm(src_m.span.text, self.vocab))]
+            if len(both) == 2:
+                src, tgt = both
         if src is None or (kind != "pick_up" and tgt is None):
             return None
         return self._ground_task(kind, src, tgt)
@@ -667,6 +693,12 @@ class _Assembly:
         return count
 
 
+_MOTION_START = re.compile(
+    r"(?i)\s*(?:and\s+|then\s+)?(?:tilt|pan|roll|yaw|pitch|rotate|turn|swing|raise|lower|lift|drop|move|shift|slide|"
+    r"dolly|push|pull|nudge|zoom|bring)\b"
+)
+
+
 def _valued(text: str) -> bool:
     return re.search(r"\d|\b(?:one|two|three|four|five|six|seven|eight|nine|ten|half|quarter|third|fifth)\b", text.lower()) is not None
 
@@ -694,7 +726,9 @@ def _joined(spans: list[Span], text: str) -> str:
         both_valued = _valued(out.split(" and ")[-1]) and _valued(piece) and re.search(
             r"[a-z]{2,}", re.sub(r"\b(?:cm|mm|deg|degrees?|percent|centimet(?:er|re)s?|millimet(?:er|re)s?)\b", "", piece.lower())
         )
-        out = f"{out} and {piece}" if both_valued else f"{out} {piece}"
+        # "lower the camera 3 cm" + "tilt it up a couple of degrees": a motion of its own after a complete one
+        own_motion = _valued(out.split(" and ")[-1]) and _MOTION_START.match(piece) is not None
+        out = f"{out} and {piece}" if both_valued or own_motion else f"{out} {piece}"
     return out
 
 

@@ -134,6 +134,8 @@ class Vocabulary:
     """Name or synonym as the catalog writes it (normalised) -> catalog id."""
     category_of: dict[str, str] = field(default_factory=dict)
     """catalog id -> its category ("fruit", "can")."""
+    containers: frozenset[str] = frozenset()
+    """catalog ids of objects that hold things inside (a basket, a bowl)."""
 
     @classmethod
     def from_objects(cls, objects: Iterable[Mapping[str, Any]]) -> Vocabulary:
@@ -142,7 +144,10 @@ class Vocabulary:
         categories: set[str] = set()
         name_ids: dict[str, str] = {}
         category_of: dict[str, str] = {}
+        containers: set[str] = set()
         for o in objects:
+            if o.get("container"):
+                containers.add(str(o["id"]).lower())
             display = _norm_name(str(o["name"]))
             names.add(display)
             name_ids.setdefault(display, str(o["id"]).lower())
@@ -161,7 +166,10 @@ class Vocabulary:
         for form, name in list(canonical.items()):
             if SPLIT_WORDS.search(form):
                 canonical[form.replace(" ", "~")] = name
-        return cls(sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories, name_ids, category_of)
+        return cls(
+            sorted(canonical, key=lambda n: (-len(n), n)), canonical, ids, categories, name_ids, category_of,
+            frozenset(containers),
+        )
 
     @property
     def name_pattern(self) -> re.Pattern[str]:
