@@ -201,6 +201,8 @@ class _Compilation:
         self.slots: list[_Slot] = []
         self.nudge_m = 0.0
         """How far an object at colliding coordinates may move (0: they are exact and collide)."""
+        self.search = False
+        """Placement searches systematically (and widens crowded regions) where sampling fails."""
 
     # -- objects -------------------------------------------------------------
     def resolve(self, mention: str, what: str) -> Resolution:
@@ -384,7 +386,7 @@ class _Compilation:
                 order.append(i)
             result = place_objects(
                 requests, self.bounds.workspace_x_m, self.bounds.workspace_y_m, self.rng,
-                min_gap_m=self.config.min_gap_m, nudge_m=self.nudge_m,
+                min_gap_m=self.config.min_gap_m, nudge_m=self.nudge_m, search=self.search, notes=self.notes,
             )
             for i, p, r in zip(order, result, requests, strict=True):
                 placed[i] = (p.x, p.y, p.yaw_deg)
@@ -421,7 +423,7 @@ class _Compilation:
             return PlacementRequest(obj, pos.x, pos.y)
         if pos.region is not None:
             xr, yr = region_box(pos.region, self.bounds)
-            return PlacementRequest(obj, x_range=xr, y_range=yr)
+            return PlacementRequest(obj, x_range=xr, y_range=yr, widen=True)
         assert ref is not None and pos.relation is not None
         rx, ry, _ = placed[ref]
         # 'near' is measured between the footprints' edges, not their centres.
@@ -524,6 +526,7 @@ def _compile(
             f"too many objects: {len(comp.slots)} requested, the study allows at most {bounds.max_objects}"
         )
     last_error = ""
+    unplaced: list[CatalogObject] | None = None
     for _ in range(comp.config.placement_attempts):
         objs = comp.draw()
         src_obj = objs[_index(comp, "source")]
@@ -540,9 +543,20 @@ def _compile(
         except PlacementError as exc:
             last_error = str(exc)
             if all(s.obj is not None and s.position is not None and s.position.x is not None for s in comp.slots):
-                break  # nothing random left to re-draw
+                break  # nothing random left to re-draw (nor for a search to move)
+            unplaced = objs
             continue
         return _finish(comp, objs, poses, task.type, seed, robot, scene_id, expected)
+    if unplaced is not None:
+        # Sampling failed every time: search the last draw's layout systematically, widening crowded
+        # regions (with a note). Only here, so that scenes that placed before place the same.
+        comp.search = True
+        try:
+            poses = comp.place(unplaced)
+        except PlacementError as exc:
+            last_error = str(exc)
+        else:
+            return _finish(comp, unplaced, poses, task.type, seed, robot, scene_id, expected)
     raise _Reject(f"cannot place the objects without collision: {last_error}")
 
 
