@@ -236,3 +236,124 @@ def test_separate_motions_without_a_second_number_stay_apart(vocab):
                "[[pick up|PICK]] [[the mug|SRC]]", vocab)
     cam = [op for op in ops["operations"] if op["op"] == "move_camera"][0]
     assert cam["translation_m"] == pytest.approx([0.0, 0.0, -0.02]) and cam["rotation_deg"][1] == pytest.approx(-2.0)
+
+
+# -- the assembly read against its own training rows' tags (benchmarks/eval_reader_parts.py): lists, groups,
+# -- pronouns, spelling and names of things the catalog lacks, each in words of our own
+
+
+def test_a_list_of_counted_objects_is_no_header_and_its_members(vocab):
+    ops = read("[[Three golf balls|OBJ]], [[two dice|OBJ]] and [[a mug|OBJ]]; [[lift|PICK]] [[a die|SRC]].", vocab)
+    assert sorted(o for o in objects(ops) if o) == ["dice", "dice", "golf ball", "golf ball", "golf ball", "mug"]
+    header = read("[[two fizzy cans|OBJ]], [[a Fanta|OBJ]] and [[a Pepsi|OBJ]]; [[grab|PICK]] [[the Fanta|SRC]]", vocab)
+    assert objects(header) == ["fanta can", "pepsi can"]  # members of the plural's kind: a header, no more objects
+
+
+def test_plurals_the_catalog_spells_otherwise_and_counts_said_in_words(vocab):
+    assert objects(read("[[2 knives|OBJ]] and [[three strawberries|OBJ]]; [[pick up|PICK]] [[a knife|SRC]]", vocab)) == [
+        "knife", "knife", "strawberry", "strawberry", "strawberry"]
+    for said, n in (("[[pair of lemons|OBJ]]", 2), ("[[plum x3|OBJ]]", 3), ("[[pear,2|OBJ]]", 2),
+                    ("[[{item: peach, qty: 4}|OBJ]]", 4), ("[[some apples, four or so|OBJ]]", 4),
+                    ("[[A few dice - five|OBJ]]", 5)):
+        ops = read(f"{said} and [[a bowl|OBJ]]; [[pick up|PICK]] [[the bowl|SRC]]", vocab)
+        assert len([o for o in objects(ops) if o != "bowl"]) == n, said
+
+
+def test_a_plural_without_a_number_replaces_as_many_as_it_replaces(vocab):
+    ops = read("[[Three lemons|DROP]] and [[a plate|OBJ]]... no, make [[the lemons|DROP]] [[peaches|OBJ]]. "
+               "[[pick up|PICK]] [[a peach|SRC]]", vocab)
+    assert objects(ops).count("peach") == 3 and "lemon" not in objects(ops)
+
+
+def test_an_indefinite_object_moving_into_a_container_is_a_task_without_its_verb(vocab):
+    ops = read("[[A mug|OBJ]] and [[two marbles|OBJ]]. [[One marble|SRC]] [[into|IN]] [[the mug|TGT]].", vocab)
+    assert task(ops) == {"type": "put_in", "source": "marble", "target": "mug"}
+    scene_only = read("[[a fork|SRC]] [[near|NEAR]] [[the plate|TGT]]; camera unchanged", vocab)
+    assert "task" not in scene_only and positions(scene_only)["fork"] == {"relation": "near", "reference": "plate"}
+
+
+def test_things_the_catalog_lacks_are_reported_by_the_name_of_the_thing(vocab):
+    ops = read("[[a pair of headphones|OBJ]], [[a set of keys|OBJ]], [[my iPhone|OBJ]] and [[a lunchbox|OBJ]]; "
+               "[[pick up|PICK]] [[the headphones|SRC]]", vocab)
+    assert objects(ops) == ["headphones", "keys", "smartphone", "lunchbox"]
+    assert task(ops)["source"] == "headphones"
+    assert objects(read("[[zxqv plorp|OBJ]] and [[a lime|OBJ]]; [[lift|PICK]] [[the lime|SRC]]", vocab)) == ["lime"]
+
+
+def test_group_members_said_by_their_colour_take_the_group_kind(vocab):
+    ops = read("Duplo in two colours ([[pink|OBJ]], [[purple|OBJ]]) and [[a bowl|OBJ]]. Put [[the pink one|SRC]] "
+               "[[in|IN]] [[the bowl|TGT]].", vocab)
+    assert objects(ops) == ["pink lego brick", "purple lego brick", "bowl"]
+    assert task(ops)["source"] == "pink lego brick"
+    cups = read("The little cups - [[orange|OBJ]] and [[green|OBJ]] - on the left; the big ones - [[blue|OBJ]] and "
+                "[[yellow|OBJ]] - on the right. [[lift|PICK]] [[the orange cup|SRC]]", vocab)
+    assert objects(cups) == ["orange cup", "green cup", "large blue cup", "large yellow cup"]
+    fruit = read("[[an orange|OBJ]] and [[a plate|OBJ]]; [[grab|PICK]] [[the orange|SRC]]", vocab)
+    assert objects(fruit) == ["orange", "plate"]  # an orange by itself is the fruit
+
+
+def test_the_one_described_by_a_colour_or_size(vocab):
+    ops = read("[[a green block|OBJ]], [[a yellow block|OBJ]], [[a mug|OBJ]]. Put [[the yellow block|REF]] on "
+               "[[the mug|TGT]] - I mean [[the green one|SRC]].", vocab)
+    assert task(ops)["source"] == "green cube"
+    bricks = read("[[a purple Duplo brick|OBJ]], [[a blue Duplo brick|OBJ]]; move [[the purple brick|SRC]] "
+                  "[[next to|NEAR]] [[the blue one|TGT]]", vocab)
+    assert task(bricks) == {"type": "move_near", "source": "purple lego brick", "target": "blue lego brick"}
+
+
+def test_what_a_pronoun_stands_for(vocab):
+    near_group = read("[[A bowl|OBJ]] in the middle. [[A pear|OBJ]] and [[a plum|OBJ]] [[sit next to|POS_ALL]] "
+                      "[[it|REF]]. Drop [[the plum|SRC]] [[in|IN]] [[the bowl|TGT]].", vocab)
+    assert positions(near_group)["pear"] == {"relation": "near", "reference": "bowl"}
+    subject = read("See [[the spoon|OBJ]] [[beside|POS]] [[the pitcher|OBJ]]? [[Lift|PICK]] [[it|SRC]].", vocab)
+    assert task(subject)["source"] == "spoon"
+    plural = read("[[Three plums|OBJ]] sit [[in front of|POS]] [[a mug|OBJ]]. [[Grab|PICK]] [[one of them|SRC]].", vocab)
+    assert task(plural)["source"] == "plum"
+    latter = read("[[A lemon|OBJ]] [[on the left|POS]], [[a peach|OBJ]] [[on the right|POS]]. [[Lift|PICK]] "
+                  "[[the latter|SRC]].", vocab)
+    assert task(latter)["source"] == "peach"
+    parallel = read("[[A towel|OBJ]] in the middle: [[a knife|OBJ]] [[to its left|POS]], [[a fork|OBJ]] "
+                    "[[to its right|POS]]. [[Pick up|PICK]] [[the fork|SRC]].", vocab)
+    assert positions(parallel)["knife"] == {"relation": "left_of", "reference": "towel"}
+    assert positions(parallel)["fork"] == {"relation": "right_of", "reference": "towel"}
+
+
+def test_a_plural_or_collective_reference_places_every_member(vocab):
+    ops = read("[[a bowl|OBJ]], [[a fork|OBJ]], [[a spoon|OBJ]] and [[a knife|OBJ]]. [[The cutlery|REF]] "
+               "[[on the left|POS]]. [[lift|PICK]] [[the spoon|SRC]]", vocab)
+    where = positions(ops)
+    assert where["fork"] == where["spoon"] == where["knife"] == {"region": "left"} and where["bowl"] is None
+
+
+def test_nothing_but_one_object_keeps_that_object(vocab):
+    ops = read("Nothing on the table except [[one baseball|OBJ]]. [[lift|PICK]] [[it|SRC]].", vocab)
+    assert objects(ops) == ["baseball"] and task(ops)["source"] == "baseball"
+
+
+def test_misspelt_and_abbreviated_names(vocab):
+    ops = read("[[pikc|PICK]] [[teh bannana|SRC]]; also [[a scisors|OBJ]], [[tuna cn|OBJ]], [[lg green cup|OBJ]]", vocab)
+    assert objects(ops) == ["scissors", "tuna can", "large green cup", "banana"]
+    assert task(ops)["source"] == "banana"
+
+
+def test_members_named_inside_a_total(vocab):
+    ops = read("[[Any six objects|TOTAL]] as long as one is [[a padlock|OBJ]] and one is [[a mug|OBJ]]. "
+               "[[padlock|SRC]] [[into|IN]] [[the mug|TGT]].", vocab)
+    assert len(objects(ops)) == 6
+    chosen = read("[[five things in all|TOTAL]]: [[a pear|OBJ]], [[the other four are up to you|ANY]]. "
+                  "[[lift|PICK]] [[the pear|SRC]]", vocab)
+    assert len(objects(chosen)) == 5
+
+
+def test_the_same_name_on_two_placed_lines_is_two_objects(vocab):
+    ops = read("ADD [[plum|OBJ]] [[LEFT|POS]]\nADD [[plum|OBJ]] [[RIGHT|POS]]\nADD [[bowl|OBJ]]\n"
+               "TASK [[put_in|IN]] [[plum|SRC]] [[bowl|TGT]]", vocab)
+    assert objects(ops).count("plum") == 2
+    restated = read("[[a towel|OBJ]], [[a lemon|OBJ]]; [[towel|OBJ]]: [[back|POS]]. [[lift|PICK]] [[the lemon|SRC]]", vocab)
+    assert objects(restated) == ["towel", "lemon"] and positions(restated)["towel"] == {"region": "back"}
+
+
+def test_a_camera_value_in_a_table_row_takes_its_column_name(vocab):
+    ops = read("id;objects;cam_yaw_deg;cam_dz_cm\n7;[[mug|OBJ]];[[-2|CAM]];[[1.5|CAM]]\n", vocab)
+    cam = next(op for op in ops["operations"] if op["op"] == "move_camera")
+    assert cam["translation_m"][2] == pytest.approx(0.015) and cam["rotation_deg"][2] == pytest.approx(2.0)

@@ -22,6 +22,9 @@ def canonical_name(vocab: Vocabulary, matched: str) -> str:
     for suffix in ("es", "s"):
         if matched.endswith(suffix) and matched[: -len(suffix)] in canonical:
             return canonical[matched[: -len(suffix)]]
+    for plural, single in (("ies", "y"), ("ves", "fe"), ("ves", "f")):  # "strawberries", "knives"
+        if matched.endswith(plural) and matched[: -len(plural)] + single in canonical:
+            return canonical[matched[: -len(plural)] + single]
     return matched
 
 def quantity(before: str) -> int:
@@ -90,6 +93,8 @@ def _reference(vocab: Vocabulary, rest: str, strict: bool) -> tuple[str, int] | 
     return phrase, start + rest[start:].index(phrase) + len(phrase)
 
 def find_region(text: str) -> tuple[str, str] | None:
+    text = re.sub(r"\b(?:centrally|in the midst)\b", "center", text)
+    text = re.sub(r"\brite\b", "right", text)
     text = re.sub(r"\bright(?=\s+(?:in|at|on|next|by|beside|near|there|here|now|behind|against)\b)", " ", text)
     horizontal: str | None = None
     vertical: str | None = None
@@ -193,6 +198,10 @@ def singular(phrase: str) -> str:
     w = words[-1]
     if re.search(r"(?:ch|sh|ss|x|z)es$", w):
         w = w[:-2]
+    elif re.fullmatch(r"(?:pocket|steak|butter|bread|paring)?(?:kni|wi|li)ves", w):
+        w = w[:-3] + "fe"  # knives, lives
+    elif re.fullmatch(r"(?:book)?(?:shel|hal|wol|cal|sel|scar|loa|lea|thie|shea)ves", w):
+        w = w[:-3] + "f"  # shelves, scarves, loaves, leaves, thieves
     elif w.endswith("ies") and len(w) > 4:
         w = w[:-3] + "y"
     elif w.endswith("s") and not w.endswith("ss"):

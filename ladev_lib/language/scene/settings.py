@@ -501,9 +501,9 @@ def read_lighting_request(text: str) -> dict[str, Any] | None:
                 return _change(-0.5)
             if re.search(r"\b(?:twice|double[ds]?) (?:as )?(?:bright|the (?:brightness|light|lighting))?|\bdoubl(?:e|ed|ing)\b", t):
                 return _change(1.0)
-        if undirected:  # "light = 0.9", "lighting(0.5)", "--light 1.35": a bare unsigned fraction is a factor
+        if undirected:  # "light = 0.9", "--light 1.35": a bare unsigned number past a plausible change is a factor
             bare = re.search(r"(?<![\w.+-])(\d*\.\d+)(?![\w.%])", t)
-            if bare is not None and 0 < float(bare.group(1)) < 2:
+            if bare is not None and 0.5 < float(bare.group(1)) < 2:  # "LIGHT 0.3" stays a change of +0.3
                 return _change(float(bare.group(1)) - 1.0)
     amount: float | None = None
     signed = 0

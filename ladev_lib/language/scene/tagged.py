@@ -27,12 +27,26 @@ from ladev_lib.language.scene.objects import (
     singular,
 )
 from ladev_lib.language.scene.settings import read_camera_request, read_lighting_request
-from ladev_lib.language.scene.words import Vocabulary, normalize_text, protect_coordinates
+from ladev_lib.language.scene.words import (
+    PAIRED_NOUNS,
+    Vocabulary,
+    normalize_text,
+    protect_coordinates,
+)
 from ladev_lib.language.tagging.markup import RELATION_TAGS, Span
 
 _OBJECT_TAGS = ("OBJ", "REF", "DROP", "SRC", "TGT")
 _POSITION_TAGS = ("POS", "POS_NEXT", "POS_ALL")
-_PRONOUN = re.compile(r"^(?:it|them|that|this|that one|this one|those|these|they|the one|one)$")
+_PRONOUN = re.compile(
+    r"^(?:it|them|that|this|that one|this one|those|these|they|the one|one|same|latter|former|(?:any |each |either )?of "
+    r"(?:them|those|these))$"
+)
+_PLURAL_PRONOUN = re.compile(r"^(?:them|those|these|they|(?:any |each |either )?of (?:them|those|these))$")
+_PREPOSITION_BEFORE = re.compile(
+    r"\b(?:with|near|next to|by|behind|beside|besides|on|onto|on top of|in|into|inside|at|to|of|from|than|around|"
+    r"under|beneath|against|alongside|toward|towards|between|among|for|over|above|across|past|beyond)\s+"
+    r"(?:(?:the|a|an|this|that|its|my|your|our|one of the|both)\s+)?$"
+)
 _DETERMINERS = re.compile(
     r"^(?:(?:the|a|an|one|some|any|another|that|this|those|these|its|my|our|your|said|same|both|each|"
     r"single|lone|one of the|one of|of the|other|\d+x?|x\d+)\s+)+"
@@ -44,11 +58,12 @@ _WORDS = ("zero", "one", "two", "three", "four", "five", "six", "seven", "eight"
 
 _ADJECTIVE = re.compile(
     r"^(?:(?:small|large|big|little|tiny|light|dark|extra large|plain|regular|"
-    r"green|yellow|red|blue|pink|purple|orange|white|black|brown|grey|gray|navy|lime)\s*)+$"
+    r"green|yellow|red|blue|pink|purple|orange|white|black|brown|grey|gray|navy|lime green)\s*)+$"
 )
 _RELATION_WORDS = re.compile(
     r"\b(?:near|next to|beside|besides|by|close to|closer to|alongside|adjacent to|around|left of|right of|"
-    r"in front of|behind|against|nearby|touching|beneath|under|on top of|on|atop|in|inside|into|between|with)\s*$"
+    r"in front of|behind|against|nearby|touching|beneath|under|on top of|on|atop|in|inside|into|between|with)"
+    r"(?:\s+(?:of|to))?\s*$"
 )
 _GROUP_NOUN = re.compile(r"\b(?:\d+|two|three|four|five|six|seven|several|some|few|pair of|couple of)\s+((?:[a-z]+\s+){0,2}[a-z]+s)\b")
 _TASK_CUE = (
@@ -96,23 +111,89 @@ def _count(normal: str, default: int = 1) -> int:
 
 def _names(phrase: str, vocab: Vocabulary) -> list[tuple[str, int]]:
     """(catalog name, count) for each catalog name in an object phrase ("two apples and a pear", "apple x2")."""
-    normal = _norm(phrase, vocab)
+    normal = _counted(_norm(phrase, vocab))
     out: list[tuple[str, int]] = []
     at = 0
-    for m in vocab.name_pattern.finditer(normal):
+    found = list(vocab.name_pattern.finditer(normal))
+    for k, m in enumerate(found):
         before = normal[at:m.start()]
         if out and not re.search(r"[,;/&+]|\b(?:and|or|plus|with|then)\b", before):
             out.pop()  # "cheez it cracker box": two names with nothing between are one object, named by the last
         after = re.match(r"\s*(?:\(\s*)?(?:x|×|\*|times\s*)\s*(\d{1,2})\b|\s*\(\s*(\d{1,2})\s*\)", normal[m.end():])
+        if after is None and k == len(found) - 1:
+            # "carrot,2", "tennis ball, qty: 2", "name: mug, count 3": a count that ends the phrase
+            after = re.fullmatch(
+                r"\s*[-,:;=|(]?\s*(?:(?:qty|count|quantity|num|number|n|amount)\s*[:=]?\s*)?(\d{1,2})\s*[;,]?\s*|(?!)(\d)",
+                normal[m.end():],
+            )
         if re.search(r"\bone of (?:the|those|these|them)?\s*$", before):
             n = 1
         elif after is not None:
             n = int(after.group(1) or after.group(2))
+        elif re.fullmatch(r"\s*(\d{1,2})\s*[,;:|x×*]?\s*", before):
+            n = int(before.strip(" ,;:|x×*"))  # "2,tennis ball", "2 | plum"
         else:
             n = _count(before.split(",")[-1].split(" and ")[-1]) if _NUMBER.search(before) else 1
-        out.append((canonical_name(vocab, m.group(0)), max(min(n, 12), 1)))
+            said = m.group(0)
+            if n == 1 and said not in vocab.canonical and said.endswith("s") and not re.search(
+                r"\b(?:a|an|one|single|each|every|either)\s+(?:\w+\s+)?$", before
+            ):
+                n = 0  # "golf balls": more than one, how many unsaid
+        out.append((canonical_name(vocab, m.group(0)), max(min(n, 12), 0)))
         at = m.end()
     return out
+
+
+def _counted(normal: str) -> str:
+    """Counts said with words for them as digits: "pair of peaches", "one pair of golf balls", "half a dozen eggs",
+    "three or so"."""
+    normal = re.sub(rf"\b(?:(?:a|one|1)\s+)?(?:pair|couple)\s+of\b(?!\s+(?:{PAIRED_NOUNS})\b)", "2", normal)
+    normal = re.sub(r"\b([2-6])\s+(?:pairs|couples)\s+of\b", lambda m: str(2 * int(m.group(1))), normal)
+    normal = re.sub(r"\bhalf (?:a )?dozen\b", "6", normal)
+    normal = re.sub(r"\b(?:a|one|1)\s+dozen\b", "12", normal)
+    return re.sub(r"\b(\d{1,2})\s*(?:or so|-ish|ish|or thereabouts)\b", r"\1", normal)
+
+
+_GENERIC_NAMES = (
+    (re.compile(r"^(?:(?:my|an?)\s+)?(?:i ?phone|cell ?phone|mobile(?: phone)?|phone|android(?: phone)?|smart ?phone)$"),
+     "smartphone"),
+    (re.compile(r"^(?:mac ?book|notebook computer|laptop computer)$"), "laptop"),
+)
+_ABBREVIATIONS = {
+    "cn": "can", "bx": "box", "btl": "bottle", "bttl": "bottle", "lg": "large", "lrg": "large", "sm": "small",
+    "sml": "small", "med": "medium", "blu": "blue", "grn": "green", "ylw": "yellow", "yel": "yellow", "rd": "red",
+    "pnk": "pink", "prpl": "purple", "choc": "chocolate", "scrwdrvr": "screwdriver",
+}
+"""Shorthand people write in notes for words of catalog names."""
+
+
+def _edits(a: str, b: str, limit: int) -> int:
+    """Edits from ``a`` to ``b`` (insert, delete, replace, swap two neighbours), or ``limit + 1`` when more."""
+    prev2: list[int] | None = None
+    prev = list(range(len(b) + 1))
+    for i in range(1, len(a) + 1):
+        cur = [i] + [0] * len(b)
+        for j in range(1, len(b) + 1):
+            cur[j] = min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1]))
+            if prev2 is not None and i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                cur[j] = min(cur[j], prev2[j - 2] + 1)
+        if min(cur) > limit:
+            return limit + 1
+        prev2, prev = prev, cur
+    return prev[-1]
+
+
+_MEASURE = re.compile(r"^(?:pair|set|bunch|couple|piece|bundle|ring|kind|sort|type)s? of\s+(?=\w)")
+
+
+def _unknown_name(bare: str) -> str:
+    """How an object the catalog lacks is reported: its noun phrase without measure words ("a set of keys" ->
+    "keys"), brand and short names as the generic thing ("iPhone", "phone" -> "smartphone")."""
+    name = _MEASURE.sub("", bare.strip())
+    for pattern, generic in _GENERIC_NAMES:
+        if pattern.match(name):
+            return generic
+    return name
 
 
 def _bare(phrase: str, vocab: Vocabulary) -> str:
@@ -134,6 +215,8 @@ class _Assembly:
         self.vocab = vocab
         self.mentions: list[_Mention] = []
         self.objects: list[_Object] = []
+        self._pronoun_refs: list[tuple[int, str]] = []
+        """(where, what) for positions said relative to a pronoun inside their words ("to its left")."""
         self.removed: set[str] = set()
         """Names of objects a taken-back mention removed ("replace the towel with a plate")."""
 
@@ -149,8 +232,11 @@ class _Assembly:
             low = s.text.lower()
             before = self.text[max(0, s.start - 12):s.start].lower()
             tag = s.tag
-            if tag == "OBJ" and re.search(r"\b(?:not|no|without|minus|except)\s+$", before):
-                tag = "DROP"
+            if tag == "OBJ" and re.search(r"\b(?:not|no|without|minus|except)\s+$", before) and not re.search(
+                r"\b(?:nothing|none|no other|no objects?|no items?|no things?|empty)\b[^.;:]*\bexcept\s+$",
+                self.text[max(0, s.start - 80):s.start].lower(),
+            ):
+                tag = "DROP"  # "not a bowl", "without a sponge"; "nothing on the table except a ball" keeps the ball
             elif tag == "SRC" and re.search(
                 r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|nix)\s+$",
                 before,
@@ -168,7 +254,10 @@ class _Assembly:
                 tag = "DROP"  # "Not the coffee can - remove it from the scene."
             elif tag == "ANY" and re.search(r"\bup to\s+$", before):
                 tag = "TOTAL"  # "fill the table up to six objects with random stuff"
-            elif tag == "ANY" and re.search(r"\b(?:up to|in total|total|in all|overall|altogether)\b", low) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b", low):
+            elif tag == "ANY" and re.search(
+                r"\bup to\s+(?:\d|one|two|three|four|five|six|seven|eight|nine|ten)\b|\b(?:in total|total|in all|overall|"
+                r"altogether)\b", low
+            ) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b", low):
                 tag = "TOTAL"
             elif tag == "TOTAL" and re.search(r"\b(?:any|random|other|more|extra|additional|arbitrary)\b", low):
                 tag = "ANY"
@@ -191,11 +280,14 @@ class _Assembly:
         for k, s in enumerate(out):
             if s.tag != "SRC" or not re.match(r"(?i)\s*(?:a|an|one)\s", s.text):
                 continue
-            lo = max(self.text.rfind(c, 0, s.start) for c in ".;\n:") + 1
+            lo = max(self.text.rfind(c, 0, s.start) for c in ".;\n") + 1  # a label before a colon counts ("Task: ...")
             hi = min([e for e in (self.text.find(c, s.end) for c in ".;\n") if e >= 0] or [len(self.text)])
             clause = self.text[lo:hi].lower()
             if re.search(_TASK_CUE, clause):
                 continue
+            moving = [t for t in out[k + 1:] if t.start < hi and t.tag in ("ON", "IN", "NEAR")]
+            if moving and re.fullmatch(r"(?:into|onto|on to|in to|->|→|=>)", moving[0].text.lower().strip()):
+                continue  # "one golf ball into the bowl": a direction of motion, a task said without its verb
             for j in range(k, len(out)):
                 t = out[j]
                 if t.start >= hi:
@@ -230,8 +322,128 @@ class _Assembly:
             return head
         return None
 
+    def _kind_words(self) -> frozenset[str]:
+        """Words of catalog names that say what kind of thing it is ("cup", "brick", "duplo"), not how it looks."""
+        if not hasattr(self, "_kinds"):
+            words = {w for n in self.vocab.names for w in n.split() if not _ADJECTIVE.match(w) and len(w) > 2}
+            self._kinds = frozenset(words - _STOPWORDS - {"wooden", "plastic", "colored", "coloured", "extra", "toy"})
+        return self._kinds
+
+    def _member_name(self, s: Span, words: str) -> str | None:
+        """The catalog name of a group member said by its looks alone ("[a pink], [a blue] and [a yellow Duplo
+        brick]", "Duplo in three colours ([blue], ...)", "the small cups - [orange], ..."): the kind word of the
+        coordination's last member, else the nearest kind word before it in the sentence."""
+        heads: list[str] = []
+        at = s.end
+        for t in self.spans:
+            if t.start < s.end or t.tag not in ("OBJ", "SRC", "REF", "DROP"):
+                continue
+            if not re.fullmatch(r"\s*(?:,|and|or|&|/|,\s*and|,\s*or)\s*", self.text[at:t.start]):
+                break
+            bare = _bare(t.text, self.vocab)
+            kind = " ".join(w for w in bare.split() if not _ADJECTIVE.match(w))
+            if kind:
+                heads.append(kind)
+                break
+            at = t.end
+        kinds = self._kind_words()
+        size = ""
+        for stops in (".;\n!?", ".\n!?"):  # the clause, then the sentence ("the small cups - ...; the large ones - ...")
+            lo = max(self.text.rfind(c, 0, s.start) for c in stops) + 1
+            tokens = re.findall(r"[a-z]+", _norm(self.text[lo:s.start], self.vocab))
+            for k in range(len(tokens) - 1, -1, -1):
+                w = tokens[k]
+                if w in ("ones", "kind", "kinds", "size", "sizes") and k and re.fullmatch(
+                    r"small|smaller|large|larger|big|bigger|little|tiny|extra large", tokens[k - 1]
+                ) and not size:
+                    size = tokens[k - 1]  # "the large ones - blue, green and yellow"
+                if w in kinds or singular(w) in kinds:
+                    heads.append(w if w in kinds else singular(w))
+                    if not size and k and re.fullmatch(r"small|large|big|little|tiny", tokens[k - 1]):
+                        size = tokens[k - 1]  # "the small cups - orange, ..."
+            if heads:
+                break
+        size = {"big": "large", "bigger": "large", "larger": "large", "little": "small", "smaller": "small",
+                "tiny": "small"}.get(size, size)
+        for head in heads:
+            noun = head.split()[-1]
+            for filled in ([f"{size} {words} {head}", f"{size} {words} {noun}"] if size else []) + [
+                f"{words} {head}", f"{words} {noun}"
+            ]:
+                named = _names(filled, self.vocab)
+                if len(named) == 1 and named[0][0] != words and set(words.split()) <= set(
+                    f"{named[0][0]} {self._display(named[0][0]) or ''}".split()
+                ):
+                    return named[0][0]
+        return None
+
+    def _in_colour_list(self, s: Span) -> bool:
+        """Whether a colour word that is also a thing ("orange") is one of a list of colours: another member said by
+        its colour alone beside it, or a plural noun and a colon or dash just before the list ("cups - orange, ...")."""
+        k = self.spans.index(s)
+        for j in (k - 1, k + 1):
+            if 0 <= j < len(self.spans) and self.spans[j].tag in ("OBJ", "DROP"):
+                lo, hi = sorted((s, self.spans[j]), key=lambda t: t.start)
+                if re.fullmatch(r"\s*(?:,|and|or|/|,\s*and)\s*", self.text[lo.end:hi.start]) and _ADJECTIVE.fullmatch(
+                    re.sub(r"\bones?$", "", _bare(self.spans[j].text, self.vocab)).strip() or "-"
+                ):
+                    return True
+        before = self.text[max(0, s.start - 40):s.start].lower()
+        return re.search(r"[a-z]{3,}s\s*(?:\(|[:\u2014\u2013-]+)\s*$", before) is not None
+
+    def _vocab_words(self) -> frozenset[str]:
+        if not hasattr(self, "_vwords"):
+            self._vwords = frozenset(w for n in self.vocab.names for w in re.findall(r"[a-z]+", n))
+        return self._vwords
+
+    def _spelled(self, phrase: str, fuzzy: bool = True) -> str | None:
+        """The phrase with misspelt and abbreviated words of catalog names written out ("teh markr" -> "teh
+        marker", "soup cn" -> "soup can", "lg yellow cup" -> "large yellow cup"), or None when nothing changed.
+        A word is corrected only to the one catalog word nearest to it (one edit for short words, two for long
+        ones, a swap of neighbours counting one), never when it is an English noun of its own."""
+        from ladev_lib.language.wordnet import default_nouns
+
+        nouns = default_nouns()
+        vocab = self._vocab_words()
+        changed = False
+        out = []
+        for token in re.split(r"(\W+)", phrase):
+            low = token.lower()
+            if not low.isalpha() or low in vocab or low in _STOPWORDS:
+                out.append(token)
+                continue
+            fixed = _ABBREVIATIONS.get(low)
+            if fixed is None and fuzzy and len(low) >= 4 and not (nouns is not None and (nouns.senses(low) or nouns.senses(singular(low)))):
+                limit = 1 if len(low) <= 5 else 2
+                near = [(d, w) for w in vocab if w[0] == low[0] and abs(len(w) - len(low)) <= limit
+                        and (d := _edits(low, w, limit)) <= limit]
+                if near:
+                    best = min(d for d, _ in near)
+                    words = {w for d, w in near if d == best}
+                    fixed = words.pop() if len(words) == 1 else None
+            if fixed is not None:
+                changed = True
+                out.append(fixed)
+            else:
+                out.append(token)
+        return "".join(out) if changed else None
+
     def _mention(self, s: Span) -> list[_Mention]:
-        found = _names(s.text, self.vocab)
+        found = [(name, n or self._plural_count(s)) for name, n in _names(s.text, self.vocab)]
+        if s.tag in _OBJECT_TAGS:
+            spelled = self._spelled(s.text, fuzzy=not found)
+            if spelled is not None and _names(spelled, self.vocab):
+                s = Span(s.tag, s.start, s.end, spelled)  # the text as meant; offsets stay the writer's
+                found = [(name, n or self._plural_count(s)) for name, n in _names(spelled, self.vocab)]
+        bare0 = _bare(s.text, self.vocab)
+        words0 = re.sub(r"\bones?$", "", bare0).strip()
+        if words0 and s.tag in ("OBJ", "DROP") and _ADJECTIVE.fullmatch(words0) and (
+            not found or found[0][0] == words0 and self._in_colour_list(s)
+        ):
+            # "[orange], [green] and [yellow]" after "the small cups": colours of the group's kind, not the fruit
+            member = self._member_name(s, words0)
+            if member is not None:
+                return [_Mention(s.tag, s, member, count=_count(_norm(s.text, self.vocab)) if s.tag == "OBJ" else 1)]
         if len(found) > 1 and s.tag in ("OBJ", "DROP", "REF"):
             return [_Mention(s.tag, s, name, count=n) for name, n in found]  # "a fork and a spoon" as one phrase
         if found:
@@ -241,6 +453,13 @@ class _Assembly:
         count = _count(normal) if s.tag == "OBJ" else 1
         words = re.sub(r"\bones?$", "", bare).strip()
         if bare and (_ADJECTIVE.match(bare) or re.search(r"\bones?$", bare)) and not _PRONOUN.match(bare):
+            if s.tag in ("SRC", "TGT", "REF") and words:
+                # "the purple one" in a task: the one object described with those words
+                said = set(words.split())
+                fits = {m.name for m in self.mentions if m.tag != "DROP" and m.name and not m.unknown
+                        and said <= set((self._display(m.name) or m.name).split()) | set(m.name.split())}
+                if len(fits) == 1:
+                    return [_Mention(s.tag, s, fits.pop())]
             # "a pink", "the yellow one": the head noun of the group or object said before
             head = self._group_head(s.start) or self._head_before(s.start)
             if head is not None:
@@ -255,12 +474,24 @@ class _Assembly:
             earlier = [x for x in self.mentions if x.span.end <= s.start and x.name]
             if earlier and s.tag == "OBJ" and re.search(r"\d", normal):
                 return [_Mention(s.tag, s, earlier[-1].name, earlier[-1].unknown, count=count)]
-        if count > 1:
+        if count > 1 and not re.search(rf"\b(?:{PAIRED_NOUNS})$", bare):
             bare = singular(bare)
         kind = self._catalog_kind(bare) if s.tag in ("OBJ", "REF", "DROP") and bare else None
         if kind is not None:
             return [_Mention(s.tag, s, kind, count=count)]
-        return [_Mention(s.tag, s, bare or None, unknown=True, count=count)]
+        return [_Mention(s.tag, s, _unknown_name(bare) or None, unknown=True, count=count)]
+
+    def _plural_count(self, s: Span) -> int:
+        """How many a plural without a number stands for: as many as the phrase it replaces ("make the two
+        tennis balls golf balls"), else two."""
+        if s.tag != "OBJ":
+            return 1
+        dropped = [m for m in self.mentions if m.tag == "DROP" and m.span.end <= s.start]
+        if dropped and re.search(r"[a-z]s\b", dropped[-1].span.text.lower()) and s.start - dropped[-1].span.end <= 40:
+            counts = [m.count for m in self.mentions if m.name == dropped[-1].name and m.count > 1]
+            if counts:
+                return counts[0]
+        return 2
 
     def _head_before(self, pos: int) -> str | None:
         earlier = [m for m in self.mentions if m.span.end <= pos and m.name and not _PRONOUN.match(m.name)]
@@ -291,7 +522,14 @@ class _Assembly:
         known = {w for n in self.vocab.names for w in n.split()}
         if head in known or singular(head) in known:
             return True
-        return nouns is None or bool(nouns.senses(head) or nouns.senses(singular(head)))
+        if nouns is None or nouns.senses(head) or nouns.senses(singular(head)):
+            return True
+        # a compound of English words WordNet does not list ("smartphone", "lunchbox", "airpods")
+        word = singular(head)
+        return any(
+            (nouns.senses(word[:k]) or len(word[:k]) == 1 and word[:k] in "ie") and nouns.senses(word[k:])
+            for k in range(1, len(word) - 2)
+        )
 
     def read_mentions(self) -> None:
         for s in self.spans:
@@ -301,16 +539,80 @@ class _Assembly:
                 )
         for m in self.mentions:  # pronouns named as objects ("near it") are their antecedents
             if m.name is not None and _PRONOUN.match(m.name) and m.tag in ("REF", "OBJ"):
-                # "two bananas near it": not the object being placed, and "it" is one thing
+                # "two bananas near it": not the objects being placed
                 placed = [p for p in self.spans if p.tag in _POSITION_TAGS and 0 <= m.span.start - p.end <= 3]
-                skip = {x.span for x in self.mentions if placed and x.span.end <= placed[0].start}
-                skip = {max(skip, key=lambda sp: sp.end)} if skip else set()
-                ante = next((x for x in reversed(self.mentions) if x.span.end <= m.span.start and x.tag != "DROP"
-                             and x.name and not _PRONOUN.match(x.name) and x.span not in skip
-                             and (m.name != "it" or x.count == 1)), None)
+                skip: set[Span] = set()
+                if placed:
+                    before = [x for x in self.mentions if x.span.end <= placed[0].start and x.tag != "DROP"]
+                    if placed[0].tag == "POS_ALL":
+                        skip = {x.span for x in self._group_before(placed[0], before)}
+                    elif before:
+                        skip = {before[-1].span} | ({before[-2].span} if self._pair(placed[0], before) else set())
+                # "both balls start right of it": "it" is none of the balls
+                heads = {singular(w) for x in self.mentions if x.span in skip and _bare(x.span.text, self.vocab)
+                         for w in [_bare(x.span.text, self.vocab).split()[-1]] if w != singular(w) or x.count > 1}
+                same_kind = {x.name for x in self.mentions if x.name and any(
+                    len(h) >= 3 and singular(x.name.split()[-1]).endswith(h) for h in heads)}
+                ante = self._resolve(m, skip=skip, exclude=same_kind)
                 m.name, m.unknown = (ante.name, ante.unknown) if ante is not None else (None, True)
                 if m.tag == "OBJ":
                     m.tag = "REF"
+
+    def _oblique(self, m: _Mention) -> bool:
+        """Whether a mention is said after a preposition ("next to [the mug]", "with [a fork] and [a spoon]"): a
+        place or a companion, less likely what a later "it" means than the thing the clause is about."""
+        if m.tag in ("TGT", "SRC"):
+            return m.tag == "TGT"  # the task's object is what the text is about
+        lo = max(self.text.rfind(c, 0, m.span.start) for c in ".;:!?\n(") + 1
+        before = self.text[max(lo, m.span.start - 30):m.span.start].lower()
+        if _PREPOSITION_BEFORE.search(before):
+            return True
+        if re.search(r"(?:,|\band|\bor)\s*(?:(?:the|a|an)\s+)?$", before):
+            earlier = [x for x in self.mentions if x.span.end <= m.span.start and x.span != m.span]
+            if earlier and m.span.start - earlier[-1].span.end <= 12 and earlier[-1].tag != "DROP":
+                return self._oblique(earlier[-1])
+        return False
+
+    def _resolve(self, m: _Mention, skip: set[Span] | None = None, exclude: set[str] | None = None) -> _Mention | None:
+        """What a pronoun stands for: a thing said before it (not one it is placed beside, not the other role of
+        its task), a group for "them" / "one of them", the later or earlier of two for "the latter" / "the
+        former"; among the rest, the latest said as the subject or object of its clause before one after a
+        preposition."""
+        word = _bare(m.span.text, self.vocab) if m.span.text else (m.name or "")
+        cands = [
+            x for x in self.mentions
+            if x.span.end <= m.span.start and x.tag != "DROP" and x.name and not _PRONOUN.match(x.name)
+            and x.span not in (skip or set()) and x.name not in (exclude or set())
+            and not (x.span.text and _PRONOUN.match(_bare(x.span.text, self.vocab)) and x.name == m.name)
+        ]
+        if not cands:
+            return None
+        if word in ("latter", "former"):
+            names: list[_Mention] = []
+            for x in reversed(cands):
+                if all(x.name != y.name for y in names):
+                    names.append(x)
+                if len(names) == 2:
+                    break
+            return names[0] if word == "latter" or len(names) < 2 else names[1]
+        if _PLURAL_PRONOUN.match(word):
+            many = [x for x in cands if x.count > 1]
+            if many:
+                return many[-1]
+        if word == "it":
+            cands = [x for x in cands if x.count == 1] or cands
+        if self._placed_by(m):
+            # "a lemon behind the mug and a pear in front of it", "knife left of it, a fork right of it": a
+            # reference of a position stands for the reference of the position said before it in the sentence
+            parallel = [x for x in cands if self._placed_by(x) and self._same_sentence(x.span.end, m.span.start)]
+            if parallel:
+                return parallel[-1]
+        direct = [x for x in cands if not self._oblique(x)]
+        return (direct or cands)[-1]
+
+    def _placed_by(self, m: _Mention) -> bool:
+        """Whether a mention is the reference of a position ("next to [it]")."""
+        return any(p.tag in _POSITION_TAGS and 0 <= m.span.start - p.end <= 3 for p in self.spans)
 
     def _headers_and_restatements(self) -> None:
         """"two soda cans, a Sprite and a 7 Up": a counted plural that introduces as many listed objects is their
@@ -321,8 +623,16 @@ class _Assembly:
                 continue
             nxt = [x for x in obj[k + 1:] if self._same_sentence(m.span.end, x.span.start)]
             gap = self.text[m.span.end:nxt[0].span.start] if nxt else ""
-            if len(nxt) >= m.count and re.fullmatch(r"\s*(?:[,:(\u2014\u2013-]|including|namely|i\.e\.|that is)\s*(?:(?:a|an|one|the)\s+)?", gap):
-                m.tag = "HEADER"
+            if len(nxt) < m.count or not re.fullmatch(
+                r"\s*(?:[,:(\u2014\u2013-]|including|namely|i\.e\.|that is)\s*(?:(?:a|an|one|the)\s+)?", gap
+            ):
+                continue
+            members = nxt[: m.count]
+            if any(x.count != 1 for x in members):
+                continue  # "two Spam cans, two tuna cans": a list of counted objects, not a header and its members
+            if re.fullmatch(r"\s*,\s*(?:(?:a|an|one|the)\s+)?", gap) and not all(self._member_of(x, m) for x in members):
+                continue  # "two Coke cans, a Pepsi can": a comma joins a list unless what follows is of the plural's kind
+            m.tag = "HEADER"
         seen: set[str] = set()
         previous: _Mention | None = None
         for m in self.mentions:
@@ -335,9 +645,32 @@ class _Assembly:
                 m.tag = "REF"  # "a lemon and a mug. Not a bowl, a mug.": the mug said again
                 continue
             indefinite = re.match(r"\s*(?:a|an|another|one|two|three|four|five|\d+|more|extra|second)\b", m.span.text.lower())
-            if m.name in seen and m.positions and not indefinite:
-                m.tag = "REF"
+            placed_before = any(x.name == m.name and x.positions for x in self.mentions if x.tag == "OBJ" and x is not m
+                                and x.span.end <= m.span.start)
+            if m.name in seen and m.positions and not indefinite and not placed_before:
+                m.tag = "REF"  # "towel: back" after "a towel" was listed; "ADD marble LEFT / ADD marble RIGHT" are two
             seen.add(m.name)
+
+    def _member_of(self, member: _Mention, header: _Mention) -> bool:
+        """Whether ``member`` is one of the kind ``header`` names: a bare adjective of it ("a pink"), an object with
+        its head noun ("a Sprite" for "soda cans": the sprite can) or of its category ("an apple" for "fruits")."""
+        if _ADJECTIVE.match(_bare(member.span.text, self.vocab)) or re.search(r"\bones?\s*$", member.span.text.lower()):
+            return True
+        if not header.name or not member.name:
+            return False
+        head = singular(header.name.split()[-1])
+        display = self._display(member.name) or member.name
+        category = self._category(member.name) or ""
+        return singular(display.split()[-1]) == head or singular(member.name.split()[-1]) == head or (
+            bool(category) and singular(category.split()[-1]) == head
+        )
+
+    def _display(self, name: str) -> str | None:
+        """The catalog's display name of a name the vocabulary knows ("sprite" -> "sprite can")."""
+        oid = self.vocab.name_ids.get(name)
+        if oid is not None:
+            return self.vocab.ids.get(oid)
+        return name if name in self.vocab.ids.values() else None
 
     def _same_sentence(self, a: int, b: int) -> bool:
         lo, hi = min(a, b), max(a, b)
@@ -370,6 +703,38 @@ class _Assembly:
             for m in targets:
                 m.positions.append(dict(position))
 
+    def _relative_to_pronoun(self, s: Span) -> dict[str, Any] | None:
+        """A position said relative to a pronoun inside its own words ("[to its left]", "[behind it]", "[left of
+        it]"): that relation to what the pronoun stands for (not the object being placed)."""
+        low = s.text.lower()
+        if not re.search(r"\b(?:it|its|them|their)\b", low):
+            return None
+        before = [m for m in self.mentions if m.span.end <= s.start and m.tag != "DROP"]
+        if not before:
+            return None
+        skip = {x.span for x in self._group_before(s, before)} if s.tag == "POS_ALL" else {before[-1].span}
+        word = re.search(r"\b(?:it|its|them|their)\b", low)
+        assert word is not None
+        probe = _Mention("REF", Span("REF", s.start + word.start(), s.start + word.end(), word.group(0)), word.group(0))
+        # "a banana to its left, a pear to its right": the same "it" as the position before it in the sentence
+        parallel = [(at, name) for at, name in self._pronoun_refs if self._same_sentence(at, s.start)]
+        parallel += [(x.span.start, x.name) for x in before if x.name and self._placed_by(x)
+                     and self._same_sentence(x.span.end, s.start) and x.span not in skip]
+        ante_name = max(parallel)[1] if parallel else None
+        if ante_name is None:
+            ante = self._resolve(probe, skip=skip)
+            ante_name = ante.name if ante is not None else None
+        if ante_name is None:
+            return None
+        self._pronoun_refs.append((s.start, ante_name))
+        relation = "near"
+        for pattern, name in ((r"\bleft\b", "left_of"), (r"\bright\b", "right_of"), (r"\bin front\b|\bfront\b", "in_front_of"),
+                              (r"\bbehind\b|\bback\b", "behind")):
+            if re.search(pattern, low):
+                relation = name
+                break
+        return {"relation": relation, "reference": ante_name}
+
     def _pair(self, s: Span, before: list[_Mention]) -> bool:
         """Whether a position follows a pair of objects that forms its own clause ("; a marker and a fork at the
         front", "with a plum and a pear up at the front") rather than the end of a longer list."""
@@ -398,6 +763,9 @@ class _Assembly:
         return list(reversed(group))
 
     def _position(self, s: Span, nxt: Span | None) -> tuple[dict[str, Any] | None, Span | None]:
+        said = self._relative_to_pronoun(s)
+        if said is not None:
+            return said, None
         protected, slots = protect_coordinates(normalize_text(s.text, self.vocab))
         for key in re.findall(r"@p\d+@", protected):
             x, y = slots[key][:2]
@@ -412,8 +780,10 @@ class _Assembly:
             return {"x": round(x, 4), "y": round(y, 4)}, None
         # a relation to the object phrase right after the relation words ("[near] [the bowl]")
         if (
-            nxt is not None and nxt.tag in _OBJECT_TAGS and nxt.start - s.end <= 3
-            and not re.search(r"[.;:\n]", self.text[s.end:nxt.start]) and _RELATION_WORDS.search(normal)
+            nxt is not None and nxt.tag in _OBJECT_TAGS and (nxt.start - s.end <= 3 and not re.search(
+                r"[.;:\n]", self.text[s.end:nxt.start]
+            ) or re.fullmatch(r"[\s\"']*[:=][\s\"']*", self.text[s.end:nxt.start]))  # {"near": "mug"}
+            and _RELATION_WORDS.search(normal)
         ):
             ref = next((m for m in self.mentions if m.span == nxt), None)
             if ref is not None and ref.name is not None:
@@ -507,6 +877,12 @@ class _Assembly:
         for m in self.mentions:
             if m.tag != "REF" or m.name is None:
                 continue
+            group = self._group_of(m)
+            if group:
+                for o in group:  # "the cutlery on the right", "both lemons beside the towel"
+                    if m.positions:
+                        o.position = dict(m.positions[-1])
+                continue
             same = self._find(m.name) or self._by_head(m.name)
             if same:
                 free = [o for o in same if o.position is None] or same  # a later position corrects an earlier one
@@ -520,12 +896,55 @@ class _Assembly:
             if isinstance(ref, str):
                 o.position["reference"] = self._in_scene(ref)  # type: ignore[index]
 
+    def _group_of(self, m: _Mention) -> list[_Object]:
+        """The objects a plural or collective mention stands for ("the cans", "both balls", "all cube", "the
+        fruit", "the cutlery"): those of its head noun, category or kind, when there are at least two."""
+        said = m.span.text.lower().strip()
+        bare = re.sub(r"^(?:both|all|all the|all of the|the|these|those|the two|the three|the four|the other|"
+                      r"the \d+|\d+)\s+", "", said)
+        bare = re.sub(r"^(?:the|these|those)\s+", "", bare)
+        words = re.findall(r"[a-z]+", bare)
+        if not words or len(words) > 3:
+            return []
+        head = words[-1]
+        plural = head != singular(head) or re.match(r"(?:both|all)\b", said) is not None
+        collective = head in ("fruit", "cutlery", "silverware", "utensils", "produce", "tableware", "crockery", "food")
+        if not plural and not collective:
+            return []
+        one = singular(head)
+        from ladev_lib.language.wordnet import default_nouns
+
+        nouns = default_nouns()
+        out = []
+        for o in self.objects:
+            if o.unknown:
+                continue
+            display = self._display(o.name) or o.name
+            category = self._category(o.name) or ""
+            kinds = {singular(o.name.split()[-1]), singular(display.split()[-1]), category}
+            if one in kinds or head in kinds or any(len(one) >= 3 and k.endswith(one) for k in kinds) or (nouns is not None and (nouns.is_a(display, one) or nouns.is_a(display, head))):
+                if len(words) > 1 and not set(words[:-1]) <= set(f"{o.name} {display}".split()):
+                    continue  # "the yellow cubes": only the yellow ones
+                out.append(o)
+        return out if len(out) >= 2 else []
+
     def _by_head(self, name: str | None) -> list[_Object]:
         """Objects a shorter name ends ("the plate" for the described "red plate", "the cup")."""
         if not name:
             return []
         head = singular(name.split()[-1])
         fits = [o for o in self.objects if singular(o.name.split()[-1]) == head and o.name.endswith(singular(name))]
+        if len({o.name for o in fits}) == 1:
+            return fits
+        if len(name.split()) == 1 and len(head) >= 3:
+            # "the ball" for the described racquetball: a compound whose last part is the word said
+            fits = [o for o in self.objects if not o.unknown and (o.name.split()[-1].endswith(head) or (
+                self._display(o.name) or "").split()[-1:] == [head])]
+            if len({o.name for o in fits}) == 1:
+                return fits
+        # "the purple brick" for the described "purple lego brick": every word said is in one object's name
+        said = set(singular(name).split()) - _STOPWORDS
+        fits = [o for o in self.objects if singular(o.name.split()[-1]) == head and said <= set(singular(o.name).split())]
         if len({o.name for o in fits}) == 1:
             return fits
         return []
@@ -558,12 +977,8 @@ class _Assembly:
         return named[-1] if named else found[-1]
 
     def _antecedent(self, m: _Mention, exclude: _Mention | None = None) -> _Mention | None:
-        earlier = [
-            x for x in self.mentions
-            if x.span.end <= m.span.start and x.tag != "DROP" and x is not exclude and x.name
-            and not _PRONOUN.match(x.name)
-        ]
-        return earlier[-1] if earlier else None
+        names = {exclude.name} if exclude is not None and exclude.name and not _PRONOUN.match(exclude.name) else set()
+        return self._resolve(m, skip={exclude.span} if exclude is not None else None, exclude=names)
 
     def _task_phrase(self, m: _Mention | None, exclude: _Mention | None = None) -> str | None:
         """The name a task role is read from: pronouns filled in from the text before."""
@@ -581,7 +996,7 @@ class _Assembly:
             if src_m is None:
                 return None
             kind = "pick_up" if tgt_m is None else "move_near"
-        src = self._task_phrase(src_m)
+        src = self._task_phrase(src_m, exclude=tgt_m if kind != "pick_up" else None)
         tgt = self._task_phrase(tgt_m, exclude=src_m) if kind != "pick_up" else None
         if kind != "pick_up" and tgt_m is None and src_m is not None:
             # "put_in dice mug", "put_on;apple;sponge": the object and the destination in one phrase
@@ -675,7 +1090,8 @@ class _Assembly:
         at = s.end
         member = re.compile(
             r"\b(?:one|two|\d) of (?:them|which|those|these|those \w+|these \w+)\b|\bamong (?:them|which)\b|"
-            r"\binclud(?:ing|es|e)\b|\bone being\b|\bof which\b|\bas long as\b|\bmake sure\b"
+            r"\binclud(?:ing|es|e)\b|\bone being\b|\bof which\b|\bas long as\b|\bmake sure\b|"
+            r"\b(?:one|another|the other)(?: of them| one)? (?:is|being|should be|must be|has to be|needs to be)\b"
         )
         inside = False
         for m in after:
@@ -707,7 +1123,20 @@ def _with_key(s: Span, text: str) -> str:
     """A span with the key it is the value of ("z_cm: [[1.5]]", "- yaw = [[+3]]"), when the line has one."""
     line_start = text.rfind("\n", 0, s.start) + 1
     prefix = text[line_start:s.start]
+    stop = [m.end() for m in re.finditer(r"[.!?;,|]\s", prefix)]  # a key never reaches back across a sentence
+    prefix = prefix[stop[-1]:] if stop else prefix
     m = re.search(r"([A-Za-z][\w ./-]{0,30})[\"']?\s*[:=]\s*[\"']?\s*$", prefix)
+    if m is None and re.fullmatch(r"[^|\n][^\n]*[;,\t|]\s*", text[line_start:s.start]) and line_start > 0:
+        # a CSV row under its header: the column's name is the key ("cam_pitch_deg;cam_dx_cm" / "...;-1;2")
+        header = text[text.rfind("\n", 0, line_start - 1) + 1:line_start - 1]
+        line_end = text.find("\n", s.end)
+        row = text[line_start:line_end if line_end >= 0 else len(text)]
+        sep = next((c for c in ";\t|," if header.count(c) >= 2 and header.count(c) == row.count(c)), None)
+        if sep is not None:
+            column = text[line_start:s.start].count(sep)
+            names = header.split(sep)
+            if column < len(names) and re.search(r"[a-z]", names[column].lower()):
+                return f"{names[column].strip()}: {s.text}"
     if m is not None and re.search(r"\d", s.text.split()[0] if s.text.split() else "x") is not None:
         return f"{m.group(1)}: {s.text}"
     if m is not None:

@@ -174,7 +174,8 @@ class Vocabulary:
     @property
     def name_pattern(self) -> re.Pattern[str]:
         if not hasattr(self, "_pattern"):
-            alts = "|".join(re.escape(n) for n in self.names)
+            irregular = sorted({form for n in self.names for form in irregular_plurals(n)}, key=lambda n: (-len(n), n))
+            alts = "|".join(re.escape(n) for n in [*irregular, *self.names])
             self._pattern = re.compile(rf"(?<![a-z0-9])(?:{alts})(?:e?s)?(?![a-z0-9])")
         return self._pattern
 
@@ -187,6 +188,25 @@ class Vocabulary:
                 rf"(?P<cat>{alts})(?:e?s)?(?![a-z0-9])"
             )
         return self._cpattern
+
+
+PAIRED_NOUNS = (
+    "scissors|pliers|tongs|tweezers|glasses|sunglasses|eyeglasses|spectacles|goggles|binoculars|headphones|earphones|"
+    "earbuds|shears|pincers|snips|cutters|clippers|jeans|trousers|pants|shorts|socks|gloves|shoes|chopsticks"
+)
+"""Nouns that "a pair of" makes one thing of ("a pair of scissors" is one object, not two scissors)."""
+
+
+def irregular_plurals(name: str) -> list[str]:
+    """Plurals of a name that its own letters plus "s" / "es" do not spell: "strawberries", "knives"."""
+    out = []
+    if re.search(r"[^aeiou]y$", name):
+        out.append(name[:-1] + "ies")
+    if name.endswith("fe"):
+        out.append(name[:-2] + "ves")
+    elif name.endswith("f") and not name.endswith("ff"):
+        out.append(name[:-1] + "ves")
+    return out
 
 
 _TENS = {"twenty": 20, "thirty": 30, "forty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90}
@@ -239,7 +259,7 @@ def normalize_text(text: str, vocab: Vocabulary) -> str:
     t = re.sub(r"\bmore (?:bright|light|strong)\b|\bless (?:dark|dim)\b", " brighter ", t)
     t = re.sub(r"\s*\}+\s*,?", " ; ", t.replace("{", " "))  # "{objects: [...], light: ...}": braces as separators
     # "a pair of lemons" (not "a pair of scissors": one object)
-    t = re.sub(r"\ba (?:pair|couple) of\b(?! (?:scissors|pliers|tongs|tweezers|glasses|shears|goggles|pincers|snips|cutters)\b)", "two", t)
+    t = re.sub(rf"\ba (?:pair|couple) of\b(?! (?:{PAIRED_NOUNS})\b)", "two", t)
     t = re.sub(r"\ba trio of\b", "three", t)
     t = re.sub(r"(?<![\d.])(\d+)[ \t]*x[ \t]+(?=[a-z])", r"\1 ", t)  # "2x random", "3 x apple": a count
     # "something else of your choice", "one more thing, anything": a free choice
