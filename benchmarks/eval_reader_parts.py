@@ -84,6 +84,8 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rows", default=str(root / "training" / "scene_tagger" / "rows_*.jsonl"))
     parser.add_argument("--tagger", action="store_true", help="also the real tagger on the validation share")
+    parser.add_argument("--validation", type=float, default=0.08,
+                        help="the validation share the weights were trained with (ladev train-reader's default)")
     parser.add_argument("--errors", type=int, default=0, help="print this many rows the assembly gets wrong")
     parser.add_argument("--field", action="append", default=[],
                         help="with --errors: only rows wrong in this field (repeatable)")
@@ -102,7 +104,7 @@ def main() -> int:
     print("  rows wrong per field: " + ", ".join(f"{f} {n}" for f, n in wrong.most_common()))
     summary: dict[str, Any] = {"rows": len(rows), "gold": on_gold.summary()}
     if args.tagger:
-        val = [r for r in rows if is_validation(r["id"], 0.1)]
+        val = [r for r in rows if is_validation(r["id"], args.validation)]
         by_id = {r.id: r for r in on_gold.rows}
         tagged = _score(val, root, gold=False)
         gold_exact = sum(by_id[r["id"]].exact for r in val) / len(val)

@@ -357,3 +357,29 @@ def test_a_camera_value_in_a_table_row_takes_its_column_name(vocab):
     ops = read("id;objects;cam_yaw_deg;cam_dz_cm\n7;[[mug|OBJ]];[[-2|CAM]];[[1.5|CAM]]\n", vocab)
     cam = next(op for op in ops["operations"] if op["op"] == "move_camera")
     assert cam["translation_m"][2] == pytest.approx(0.015) and cam["rotation_deg"][2] == pytest.approx(2.0)
+
+
+def test_one_and_the_other_of_a_counted_group(vocab):
+    ops = read("There are two mugs, [[one|OBJ]] [[on the left|POS]] and [[the other|OBJ]] [[on the right|POS]], plus "
+               "[[a lemon|OBJ]]. Drop [[the lemon|SRC]] [[into|IN]] [[the left mug|TGT]].", vocab)
+    assert objects(ops) == ["mug", "mug", "lemon"]
+
+
+def test_so_many_of_each_listed_kind(vocab):
+    ops = read("Cans, two of each: [[Sprite|OBJ]] and [[Fanta|OBJ]]; and [[a plate|OBJ]]. [[lift|PICK]] "
+               "[[a Sprite|SRC]]", vocab)
+    assert sorted(objects(ops)) == ["fanta can", "fanta can", "plate", "sprite can", "sprite can"]
+    kinds = read("Balls: [[tennis|OBJ]] and [[golf|OBJ]]; [[pick up|PICK]] [[the golf ball|SRC]]", vocab)
+    assert objects(kinds) == ["tennis ball", "golf ball"]
+
+
+def test_names_said_after_their_adjective_or_with_a_spaced_digit(vocab):
+    ops = read("[[one plate red|OBJ]] and [[a 7 Up can|OBJ]]; put [[the 7 Up|SRC]] [[on|ON]] [[red plate|TGT]]", vocab)
+    assert objects(ops) == ["red plate", "7up can"]
+    assert task(ops) == {"type": "put_on", "source": "7up can", "target": "red plate"}
+
+
+def test_removed_then_kept_stays(vocab):
+    ops = read("[[a pear|OBJ]], [[a mug|OBJ]]. Remove [[the mug|REF]]... actually no, keep it. [[lift|PICK]] "
+               "[[the pear|SRC]]", vocab)
+    assert objects(ops) == ["pear", "mug"]

@@ -69,7 +69,9 @@ _GROUP_NOUN = re.compile(r"\b(?:\d+|two|three|four|five|six|seven|several|some|f
 _TASK_CUE = (
     r"\b(?:task|goal|aim|objective|job|test|robot|arm|gripper|manipulator|should|must|needs?|wants?|want|goes|go|"
     r"put|puts|place|places|move|moves|set|sets|drop|drops|pick|picks|lift|lifts|grab|grabs|bring|brings|stack|"
-    r"lay|lays|slide|slides|carry|carries|take|takes|get|gets|end up|ends up|can it|could it|will|try)\b|->|=>|\?"
+    r"lay|lays|slide|slides|carry|carries|take|takes|get|gets|end up|ends up|can it|could it|will|try|push|pushes|"
+    r"nudge|nudges|shove|shoves|tuck|tucks|pop|pops|toss|tosses|nest|nests|drag|drags|transfer|transfers|deposit|"
+    r"insert|inserts|load|loads|then|next|finally|afterwards|ends?|finish(?:es)?)\b|->|=>|\?"
 )
 _STOPWORDS = frozenset({"the", "a", "an", "of", "and", "or", "to", "in", "on", "at", "with", "some", "any"})
 
@@ -117,13 +119,17 @@ def _names(phrase: str, vocab: Vocabulary) -> list[tuple[str, int]]:
     found = list(vocab.name_pattern.finditer(normal))
     for k, m in enumerate(found):
         before = normal[at:m.start()]
-        if out and not re.search(r"[,;/&+]|\b(?:and|or|plus|with|then)\b", before):
-            out.pop()  # "cheez it cracker box": two names with nothing between are one object, named by the last
+        if out and not re.search(r"[,;/&+]|\b(?:and|or|plus|with|then)\b", before) and (
+            _object_id(vocab, out[-1][0]) == _object_id(vocab, canonical_name(vocab, m.group(0)))
+            or _object_id(vocab, out[-1][0]) is None
+        ):
+            out.pop()  # "cheez it cracker box": two names of one object side by side are that object
         after = re.match(r"\s*(?:\(\s*)?(?:x|×|\*|times\s*)\s*(\d{1,2})\b|\s*\(\s*(\d{1,2})\s*\)", normal[m.end():])
         if after is None and k == len(found) - 1:
             # "carrot,2", "tennis ball, qty: 2", "name: mug, count 3": a count that ends the phrase
             after = re.fullmatch(
-                r"\s*[-,:;=|(]?\s*(?:(?:qty|count|quantity|num|number|n|amount)\s*[:=]?\s*)?(\d{1,2})\s*[;,]?\s*|(?!)(\d)",
+                r"\s*[-,:;=|(]?\s*(?:(?:qty|count|quantity|num|number|n|amount)\s*[:=]?\s*|(?:say|like|about|around|maybe|"
+                r"roughly|approximately)\s+)?(\d{1,2})\s*[;,]?\s*|(?!)(\d)",
                 normal[m.end():],
             )
         if re.search(r"\bone of (?:the|those|these|them)?\s*$", before):
@@ -139,9 +145,22 @@ def _names(phrase: str, vocab: Vocabulary) -> list[tuple[str, int]]:
                 r"\b(?:a|an|one|single|each|every|either)\s+(?:\w+\s+)?$", before
             ):
                 n = 0  # "golf balls": more than one, how many unsaid
-        out.append((canonical_name(vocab, m.group(0)), max(min(n, 12), 0)))
+        name = canonical_name(vocab, m.group(0))
+        post = re.match(r"\s+([a-z]+)\b", normal[m.end():])
+        if post is not None and f"{post.group(1)} {name}" in vocab.canonical:
+            name = vocab.canonical[f"{post.group(1)} {name}"]  # "apple red", "plate red": the adjective said after
+        out.append((name, max(min(n, 12), 0)))
         at = m.end()
     return out
+
+
+def _object_id(vocab: Vocabulary, name: str) -> str | None:
+    """The catalog id of a name or display name the vocabulary knows ("7 up" and "7up", "seven up can")."""
+    for form in (name, vocab.canonical.get(name, name), re.sub(r"(?<=\d) (?=[a-z])", "", name)):
+        oid = vocab.name_ids.get(form) or next((c for c, d in vocab.ids.items() if d == form), None)
+        if oid is not None:
+            return oid
+    return None
 
 
 def _counted(normal: str) -> str:
@@ -240,13 +259,17 @@ class _Assembly:
             elif tag == "SRC" and re.search(
                 r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|nix)\s+$",
                 before,
-            ) and not any(t.tag in RELATION_TAGS and t.start > s.end and self._same_sentence(s.end, t.start) for t in spans):
+            ) and not any(t.tag in RELATION_TAGS and t.start > s.end and self._same_sentence(s.end, t.start) for t in spans) \
+                    and not re.match(r"\s*(?:in|into|on|onto|inside|next to|near|beside|over)\b", self.text[s.end:s.end + 12].lower()):
                 tag = "DROP"  # "Drop the peach." with no destination: taken out of the scene, no task
             elif tag in ("OBJ", "REF") and re.search(
                 r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|cut|nix)"
                 r"\s+$", before
+            ) and not re.search(
+                r"^[^.!?\n]*[.!?\n]?[^.!?\n]*\b(?:keep|leave)\s+(?:it|them|that|the\s+\w+|it in|it there)\b|^\W*(?:never mind|"
+                r"scratch that|no wait|actually no)\b", self.text[s.end:s.end + 120].lower()
             ):
-                tag = "DROP"  # "actually, drop the pepsi can"
+                tag = "DROP"  # "actually, drop the pepsi can" (not "remove the banana... actually no, keep it")
             elif tag in ("OBJ", "REF") and re.match(
                 r"\s*(?:[-\u2014\u2013,;:]|\.\s)?\s*(?:please\s+)?(?:remove|drop|delete|take out|lose|ditch|get rid of)\s+"
                 r"(?:it|that one|that)\b", self.text[s.end:s.end + 40], re.IGNORECASE
@@ -389,7 +412,9 @@ class _Assembly:
                 ):
                     return True
         before = self.text[max(0, s.start - 40):s.start].lower()
-        return re.search(r"[a-z]{3,}s\s*(?:\(|[:\u2014\u2013-]+)\s*$", before) is not None
+        plural = re.search(r"([a-z]{3,}s)\s*(?:\(|[:\u2014\u2013-]+)\s*$", before)
+        return plural is not None and (singular(plural.group(1)) in self._kind_words() or plural.group(1) in (
+            "colours", "colors"))
 
     def _vocab_words(self) -> frozenset[str]:
         if not hasattr(self, "_vwords"):
@@ -428,7 +453,26 @@ class _Assembly:
                 out.append(token)
         return "".join(out) if changed else None
 
+    def _each(self, s: Span) -> int | None:
+        """"two of each: [a golf ball], [a marble]": how many of each listed object, when said before the list."""
+        if s.tag != "OBJ" or _NUMBER.search(_norm(s.text, self.vocab)):
+            return None
+        lo = max(self.text.rfind(c, 0, s.start) for c in ".;!?\n") + 1  # the list in the clause of "of each"
+        said = list(re.finditer(r"\b(\d+|two|three|four|five) of each(?: kind| colou?r| type| sort)?\b", _norm(
+            self.text[lo:s.start], self.vocab)))
+        if not said:
+            return None
+        m = said[-1]
+        n = _count(m.group(1), 0) or {"two": 2, "three": 3, "four": 4, "five": 5}.get(m.group(1), 0)
+        return n if n > 1 else None
+
     def _mention(self, s: Span) -> list[_Mention]:
+        each = self._each(s)
+        if each is not None:
+            return [_Mention(m.tag, m.span, m.name, m.unknown, each, m.positions) for m in self._mention_once(s)]
+        return self._mention_once(s)
+
+    def _mention_once(self, s: Span) -> list[_Mention]:
         found = [(name, n or self._plural_count(s)) for name, n in _names(s.text, self.vocab)]
         if s.tag in _OBJECT_TAGS:
             spelled = self._spelled(s.text, fuzzy=not found)
@@ -437,6 +481,8 @@ class _Assembly:
                 found = [(name, n or self._plural_count(s)) for name, n in _names(spelled, self.vocab)]
         bare0 = _bare(s.text, self.vocab)
         words0 = re.sub(r"\bones?$", "", bare0).strip()
+        if found and re.search(r"\bones?$", bare0) and all(_ADJECTIVE.fullmatch(n) for n, _ in found):
+            found = []  # "the large orange one": a colour, not the fruit
         if words0 and s.tag in ("OBJ", "DROP") and _ADJECTIVE.fullmatch(words0) and (
             not found or found[0][0] == words0 and self._in_colour_list(s)
         ):
@@ -452,6 +498,16 @@ class _Assembly:
         normal = _norm(s.text, self.vocab)
         count = _count(normal) if s.tag == "OBJ" else 1
         words = re.sub(r"\bones?$", "", bare).strip()
+        if s.tag == "OBJ" and re.fullmatch(r"(?:the )?(?:one|other|other one|another|another one|second|second one|"
+                                           r"first|first one|last|last one|remaining one)", s.text.lower().strip(" .,")):
+            # "two towels, [one] at the front, [the other] at the back": one of the group said before
+            kind = self._member_name(s, "") or self._group_noun(s.start)
+            if kind is not None:
+                return [_Mention(s.tag, s, kind)]
+        if s.tag in ("OBJ", "DROP") and bare and not _PRONOUN.match(bare) and not _ADJECTIVE.match(bare):
+            kind = self._member_name(s, bare)  # "balls: [tennis] and [golf]"
+            if kind is not None:
+                return [_Mention(s.tag, s, kind, count=count)]
         if bare and (_ADJECTIVE.match(bare) or re.search(r"\bones?$", bare)) and not _PRONOUN.match(bare):
             if s.tag in ("SRC", "TGT", "REF") and words:
                 # "the purple one" in a task: the one object described with those words
@@ -474,12 +530,25 @@ class _Assembly:
             earlier = [x for x in self.mentions if x.span.end <= s.start and x.name]
             if earlier and s.tag == "OBJ" and re.search(r"\d", normal):
                 return [_Mention(s.tag, s, earlier[-1].name, earlier[-1].unknown, count=count)]
+            kind = self._member_name(s, "") if s.tag == "OBJ" else None
+            if kind is not None:  # "double up on the bananas - [two of them]"
+                return [_Mention(s.tag, s, kind, count=count)]
         if count > 1 and not re.search(rf"\b(?:{PAIRED_NOUNS})$", bare):
             bare = singular(bare)
         kind = self._catalog_kind(bare) if s.tag in ("OBJ", "REF", "DROP") and bare else None
         if kind is not None:
             return [_Mention(s.tag, s, kind, count=count)]
         return [_Mention(s.tag, s, _unknown_name(bare) or None, unknown=True, count=count)]
+
+    def _group_noun(self, pos: int) -> str | None:
+        """The catalog object of a counted group said just before ``pos`` ("there are two orange, [one] ...")."""
+        lo = max(self.text.rfind(c, 0, pos) for c in ".!?\n") + 1
+        window = _norm(self.text[lo:pos], self.vocab)
+        for m in reversed(list(re.finditer(r"\b(?:[2-9]|several|some)\s+((?:[a-z]+\s+){0,2}[a-z]+)", window))):
+            named = _names(m.group(1), self.vocab)
+            if len(named) == 1:
+                return named[0][0]
+        return None
 
     def _plural_count(self, s: Span) -> int:
         """How many a plural without a number stands for: as many as the phrase it replaces ("make the two
@@ -808,8 +877,10 @@ class _Assembly:
     def _same(self, a: str | None, b: str | None) -> bool:
         if a is None or b is None:
             return False
-        ids = self.vocab.name_ids
-        return a == b or (a in ids and ids.get(a) == ids.get(b)) or singular(a) == singular(b)
+        if a == b or singular(a) == singular(b):
+            return True
+        oid = _object_id(self.vocab, a)
+        return oid is not None and oid == _object_id(self.vocab, b)
 
     def _find(self, name: str | None) -> list[_Object]:
         return [o for o in self.objects if self._same(o.name, name)]
@@ -822,7 +893,8 @@ class _Assembly:
                 before = self.text[max(0, m.span.start - 40):m.span.start].lower()
                 if self._find(m.name) and re.search(
                     r"\b(?:correction|actually|instead|make (?:that|it)|i mean|sorry|no|rather|just|only)\b[^.;]*$", before
-                ) and re.match(r"(?i)\s*(?:just\s+|only\s+)?(?:\d+|one|two|three|four|five|a|an|a single)\b", m.span.text):
+                ) and re.match(r"(?i)\s*(?:just\s+|only\s+)?(?:\d+|one|two|three|four|five|a|an|a single)\b", m.span.text) \
+                        and not re.search(r"(?i)\b(?:second|another|extra|more|additional|spare|other|third)\b", m.span.text):
                     # "two lemons ... correction: just one lemon": the new count replaces the old one
                     for o in self._find(m.name):
                         self.objects.remove(o)
@@ -844,6 +916,10 @@ class _Assembly:
                 continue
             said = [m for m in self.mentions if m.tag == tag and m.positions]
             found = self._find(name)
+            if found and all(o.mentions and re.search(
+                r"(?i)\b(?:second|another|extra|additional|spare|other|2nd|decoy)\b", o.mentions[0].span.text
+            ) for o in found) and any(x.tag == tag and not _PRONOUN.match(x.name or "it") for x in self.mentions):
+                found = []  # "put the golf ball in the cup, with a spare golf ball beside it": two golf balls
             if not found:
                 unknown = name not in self.vocab.canonical.values() and name not in self.vocab.name_ids
                 position = said[-1].position if said else None
@@ -883,7 +959,11 @@ class _Assembly:
                     if m.positions:
                         o.position = dict(m.positions[-1])
                 continue
-            same = self._find(m.name) or self._by_head(m.name)
+            same = self._find(m.name) or [
+                o for o in self._by_head(m.name) if any(
+                    x.span.start < m.span.start for x in [*o.mentions, *self.mentions] if x.tag != "DROP" and self._same(x.name, o.name)
+                )
+            ]  # "the plate" for a red plate said before; "Apple and a red apple" are two
             if same:
                 free = [o for o in same if o.position is None] or same  # a later position corrects an earlier one
                 for pos in m.positions:
@@ -944,7 +1024,13 @@ class _Assembly:
                 return fits
         # "the purple brick" for the described "purple lego brick": every word said is in one object's name
         said = set(singular(name).split()) - _STOPWORDS
-        fits = [o for o in self.objects if singular(o.name.split()[-1]) == head and said <= set(singular(o.name).split())]
+
+        def words(o: _Object) -> set[str]:
+            return set(singular(o.name).split()) | set((self._display(o.name) or "").split())
+
+        own = _object_id(self.vocab, name)  # "the yellow lego brick" is not the small one described
+        fits = [o for o in self.objects if head in {singular(w) for w in words(o)} and said <= words(o)
+                and (own is None or own == _object_id(self.vocab, o.name))]
         if len({o.name for o in fits}) == 1:
             return fits
         return []
@@ -1019,8 +1105,9 @@ class _Assembly:
         return out
 
     def _in_scene(self, name: str) -> str:
-        if self._find(name):
-            return name
+        found = self._find(name)
+        if found:
+            return name if any(o.name == name for o in found) else found[0].name
         by_head = self._by_head(name)
         if by_head:
             return by_head[0].name
@@ -1069,7 +1156,7 @@ class _Assembly:
         for s in self.spans:
             if s.tag != "ANY":
                 continue
-            normal = _norm(s.text, self.vocab)
+            normal = re.sub(r"\ba couple(?: of)?\b", "2", _counted(_norm(s.text, self.vocab)))
             m = _NUMBER.search(normal)
             if re.search(r"\b(?:no|nothing|none|not|without|zero)\b", normal):
                 continue  # "nothing random"
@@ -1085,7 +1172,8 @@ class _Assembly:
 
     def _members(self, s: Span) -> int:
         """Named objects said to be among a random group ("three random objects, one of them a marker")."""
-        after = [m for m in self.mentions if m.tag == "OBJ" and m.span.start > s.end and self._same_sentence(s.end, m.span.start)]
+        after = [m for m in self.mentions if m.tag == "OBJ" and m.span.start > s.end
+                 and not re.search(r"[.!?\n]", self.text[s.end:m.span.start])]  # "four random objects; make sure one is ..."
         count = 0
         at = s.end
         member = re.compile(
@@ -1098,7 +1186,11 @@ class _Assembly:
             between = self.text[at:m.span.start].lower()
             tail = self.text[m.span.end:m.span.end + 40].lower()
             at = m.span.end
-            also = re.match(r"\s*(?:too|as well|also)\b", tail)
+            also = re.match(r"\s*(?:too|as well|also)\b", tail) or re.search(
+                r"\b(?:also|too|as well|in addition|additionally|plus|on top)\b", between
+            )
+            if also:
+                break
             if member.search(between) or (inside and not also and re.fullmatch(r"\s*(?:,|and)\s*", between)) or re.match(
                 r"\s*(?:is|are|being|must be|should be)\s+(?:among|one of|part of|included)", tail
             ):

@@ -209,7 +209,9 @@ def _token_spans(
         if name == "O":
             continue
         tag = name[2:]
-        if name.startswith("I-") and pieces and pieces[-1][0] == tag and pieces[-1][3][-1] == i - 1:
+        if name.startswith("I-") and pieces and pieces[-1][0] == tag and pieces[-1][3][-1] == i - 1 and (
+            "\n" not in text[pieces[-1][2]:s]  # a phrase never runs across a line break
+        ):
             t, st, _, idx = pieces[-1]
             pieces[-1] = (t, st, e, [*idx, i])
         else:
