@@ -153,3 +153,27 @@ def test_camera_corrections_keep_the_amount_and_take_the_new_direction(text, tra
 
 def test_a_direction_without_an_amount_is_still_left_to_the_rule_reader():
     assert read_camera_request("tilt it up a little") is None
+
+
+@pytest.mark.parametrize(
+    ("said", "delta"),
+    [("-25 % brightness", -0.25), ("lights to the half", -0.5), ("the lamp softened by about ten percent", -0.1),
+     ("lighting at one hundred ten percent", 0.1)],
+)
+def test_signed_changes_levels_and_words_of_lowering(said, delta):
+    op = read_lighting_request(said)
+    assert op is not None and op["intensity_delta"] == pytest.approx(delta)
+
+
+@pytest.mark.parametrize(
+    ("said", "translation_m", "rotation_deg"),
+    [("tilt to 4 degrees down", [0.0, 0.0, 0.0], [0.0, 4.0, 0.0]),
+     ("the camera climbs of 3 cm", [0.0, 0.0, 0.03], [0.0, 0.0, 0.0]),
+     ("camera advances of 1 cm", [0.01, 0.0, 0.0], [0.0, 0.0, 0.0]),
+     ("raise it a full centimetre", [0.0, 0.0, 0.01], [0.0, 0.0, 0.0]),
+     ("tz = 2", [0.0, 0.0, 0.02], [0.0, 0.0, 0.0])],
+)
+def test_camera_words_of_learners_and_keys(said, translation_m, rotation_deg):
+    op = read_camera_request(said)
+    assert op is not None
+    assert op["translation_m"] == pytest.approx(translation_m) and op["rotation_deg"] == pytest.approx(rotation_deg)

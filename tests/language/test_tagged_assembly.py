@@ -383,3 +383,22 @@ def test_removed_then_kept_stays(vocab):
     ops = read("[[a pear|OBJ]], [[a mug|OBJ]]. Remove [[the mug|REF]]... actually no, keep it. [[lift|PICK]] "
                "[[the pear|SRC]]", vocab)
     assert objects(ops) == ["pear", "mug"]
+
+
+def test_one_of_several_picked_out_by_where_it_stands_or_its_size(vocab):
+    back = read("Two mugs, [[one|OBJ]] [[at the front|POS]] and [[one|OBJ]] [[at the back|POS]], and [[a tennis ball|OBJ]]. "
+                "Put [[the ball|SRC]] [[in|IN]] [[the one at the back|TGT]].", vocab)
+    assert task(back) == {"type": "put_in", "source": "tennis ball", "target": "mug"}
+    sized = read("[[The large blue cup|OBJ]] [[on the left|POS]]; [[the small blue one|OBJ]] [[on the right|POS]]. Move "
+                 "[[the small one|SRC]] [[next to|NEAR]] [[the big one|TGT]].", vocab)
+    assert task(sized) == {"type": "move_near", "source": "light blue cup", "target": "large blue cup"}
+    former = read("[[A pear|OBJ]] and [[a plum|OBJ]], plus [[a bowl|OBJ]]. Drop [[the former|SRC]] [[into|IN]] "
+                  "[[the bowl|TGT]].", vocab)
+    assert task(former)["source"] == "pear"
+
+
+def test_a_group_is_the_words_joined_as_one_list(vocab):
+    ops = read("Lay out [[a red plate|OBJ]], then [[a lemon|OBJ]] and [[a plum|OBJ]] [[around it|POS_ALL]]. [[lift|PICK]] "
+               "[[the plum|SRC]]", vocab)
+    assert positions(ops)["lemon"] == positions(ops)["plum"] == {"relation": "near", "reference": "red plate"}
+    assert positions(ops)["red plate"] is None

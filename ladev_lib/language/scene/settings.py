@@ -96,6 +96,8 @@ def _clean(text: str) -> str:
     t = re.sub(r"\*\s*=?\s*(?=[\d.])", " x ", t)  # "light *= 0.85"
     t = re.sub(r"[\"{}\[\]()]", " ", t)
     t = re.sub(r"\bpercents?\b|\bper cent\b|\bpct\b", "%", t)
+    t = re.sub(r"\b(?:a|one) hundred(?: and)?(?:\s+(twenty|thirty|forty|fifty|sixty|seventy|eighty|ninety|ten|five))?\b",
+               lambda m: str(100 + ({"ten": 10, "five": 5}.get(m.group(1) or "", 0) or _NUMBER_WORDS.get(m.group(1) or "", 0))), t)
     t = re.sub(r"\b(twenty|thirty|forty|fifty|sixty|seventy|eighty|ninety)[\s-]+(one|two|three|four|five|six|seven|eight|nine)\b",
                lambda m: str(_NUMBER_WORDS[m.group(1)] + _NUMBER_WORDS[m.group(2)]), t)
     t = re.sub(r"\b(this|that|which|each|every|another|other|no) one\b(?!\s+(?:point|and)\b)", r"\1 item", t)
@@ -114,7 +116,8 @@ def _clean(text: str) -> str:
                lambda m: _fmt(int(m.group(1)) / int(m.group(2))) if 2 <= int(m.group(2)) <= 100 else m.group(0), t)
     t = re.sub(rf"(\d*\.\d+)\s+of\s+(?:a|an|one)\s+(?=(?:{_UNIT_WORD})\b)", r"\1 ", t)  # "three quarters of a degree"
     t = re.sub(r"\bhalf an? (?=cm|centimet|mm|millimet|deg|inch)", "0.5 ", t)
-    t = re.sub(r"\b(?:a|an|one)\s+(?=(?:cm|centimet\w*|mm|millimet\w*|degree|deg|inch)\b)", "1 ", t)  # "by a centimeter"
+    t = re.sub(r"\b(?:a|an|one)\s+(?:full\s+|whole\s+|single\s+)?(?=(?:cm|centimet\w*|mm|millimet\w*|degree|deg|inch)\b)", "1 ",
+               t)  # "by a centimeter", "a full centimetre"
     t = re.sub(r"\ba couple(?: of)?\s+(?=(?:cm|centimet\w*|mm|millimet\w*|degrees?|deg)\b)", "2 ", t)  # "a couple of degrees"
     t = re.sub(r"\b(" + "|".join(sorted(_NUMBER_WORDS, key=len, reverse=True)) + r")\b(?!\s+(?:of|as)\b)",
                lambda m: _fmt(_NUMBER_WORDS[m.group(1)]), t)
@@ -133,10 +136,11 @@ _TRANSLATE = [  # (pattern, axis, sign) in the description frame: x right, y for
     (r"\b(?:to the right|rightwards?|right|rigth|rite|rihgt)\b", 0, 1),
     (r"\b(?:to the left|leftwards?|left|lft)\b", 0, -1),
     (r"\b(?:forwards?|fwd|ahead|(?:to (?:the )?)?front|closer|nearer|near(?= to)|close to (?:the )?table|toward(?:s)? (?:the )?table|"
-     r"towards? (?:the )?scene|approach\w*|in(?:wards?)?|push(?:ed)? in|dolly(?:ing|ied)? in|zoom(?:ed)? in)\b", 1, 1),
+     r"towards? (?:the )?scene|approach\w*|advanc\w*|in(?:wards?)?|push(?:ed)? in|dolly(?:ing|ied)? in|zoom(?:ed)? in)\b", 1, 1),
     (r"\b(?:backwards?|bwd|back(?:s|ed|ing)? (?:off|away|up)|backs|backed|back|further|farther|away from (?:the )?table|away|"
      r"out(?:wards?)?|pull(?:ed|s)? back|dolly(?:ing|ied)? out|zoom(?:ed)? out|retreat\w*)\b", 1, -1),
-    (r"\b(?:up(?:wards?)?|higher|high|raise[ds]?|rais(?:ing)|lift(?:ed|s)?|elevate[ds]?|above|boom up|crane up)\b", 2, 1),
+    (r"\b(?:up(?:wards?)?|higher|high|raise[ds]?|rais(?:ing)|lift(?:ed|s)?|elevate[ds]?|above|boom up|crane up|climb\w*|"
+     r"ascend\w*|rise[sn]?|rose)\b", 2, 1),
     (r"\b(?:down(?:wards?)?|lower(?:ed|s)?|drop(?:ped|s)?|descend(?:ed|s)?|below|sink|sunk)\b", 2, -1),
 ]
 _SENSES = [  # rotation senses said without a translation word
@@ -144,7 +148,7 @@ _SENSES = [  # rotation senses said without a translation word
     (r"\b(?:clockwise|cw)\b", 1),
 ]
 _DIRECTION = re.compile("|".join(f"(?:{p})" for p, _ in _SENSES) + "|" + "|".join(f"(?:{p})" for p, _, _ in _TRANSLATE))
-_AXIS_KEYS = {"x": 0, "dx": 0, "y": 1, "dy": 1, "z": 2, "dz": 2, "height": 2, "elevation": 2}
+_AXIS_KEYS = {"x": 0, "dx": 0, "tx": 0, "y": 1, "dy": 1, "ty": 1, "z": 2, "dz": 2, "tz": 2, "height": 2, "elevation": 2}
 _ROTATION_VERBS = (
     r"pan(?:ned|s|ning)?|yaw(?:ed|s|ing)?|tilt(?:ed|s|ing)?|pitch(?:ed|es|ing)?|roll(?:ed|s|ing)?|rotat\w*|turn(?:ed|s|ing)?|"
     r"swing|swung|swivel\w*|spin|spun|twist\w*|tip(?:ped|s|ping)?|angle[ds]?|angling"
@@ -354,7 +358,8 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
     read_any = read_any or read_vals
     # axis keys with signed values: "x: -1", "dz -4cm", "yaw: +3", "z_cm: 1.5", "pitch_deg = 2", "yaw;-4", "lift_cm: 0.5"
     keyed = re.compile(
-        r"\b(dx|dy|dz|x|y|z|height|elevation|d?yaw|d?pitch|d?roll|pan|tilt|up|down|left|right|forward|fwd|back|lift|raise|lower|drop)"
+        r"\b(dx|dy|dz|tx|ty|tz|x|y|z|height|elevation|d?yaw|d?pitch|d?roll|pan|tilt|up|down|left|right|forward|fwd|back|lift|"
+        r"raise|lower|drop)"
         rf"(?:_(cm|mm|m|deg))?\s*[:=;]\s*({_NUM})\s*(cm|mm|deg(?:rees?)?)?"
     )
     for m in keyed.finditer(t):
@@ -365,6 +370,12 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
             value /= 10
         elif unit == "m":
             value *= 100
+        worded = re.match(r"\s*(?:to\s+the\s+)?(down|up|left|right|counter[\s-]?clockwise|anti[\s-]?clockwise|clockwise)\b",
+                          t[m.end():])
+        if worded is not None and key in ("yaw", "pan", "pitch", "tilt", "roll"):
+            # "tilt to 5 degrees down": the direction said after the value gives its sign
+            word = worded.group(1)
+            value = abs(value) * (-1 if word in ("down", "left") or word.startswith(("counter", "anti")) else 1)
         if key in _AXIS_KEYS:
             translate[_AXIS_KEYS[key]] += value
         elif key in ("yaw", "pan"):
@@ -438,7 +449,7 @@ _BRIGHTER = re.compile(
 _DARKER = re.compile(
     r"\b(?:dark\w*|dim\w*|down|decrease[ds]?|decreas\w+|reduc\w+|lower\w*|less|lesser|weaker|cut|drop\w*|minus|"
     r"fainter|gloom\w*|below|under|turn(?:ed)? down|tone(?:d)? down|darken\w*|shad\w*|kill\w*|remov\w*|subtract\w*|"
-    r"take (?:away|off)|took (?:away|off)|lose|losing|off)\b|^\s*-"
+    r"take (?:away|off)|took (?:away|off)|lose|losing|off|soft\w*|low|mute[ds]?|subdue[ds]?)\b|^\s*-"
 )
 _BASELINE = (
     r"(?:the\s+|its\s+|their\s+|what it is\s+)?(?:(?:default|normal|usual|full|original|standard|regular|current|nominal|"
@@ -456,7 +467,7 @@ def _change(value: float) -> dict[str, Any]:
 def _level(t: str, undirected: bool) -> float | None:
     """The level a request sets, as a fraction of normal ("at 70% of normal", "brightness 110%", "to 0.8")."""
     pct = re.search(
-        rf"({_NUM})\s*%\s*(?:of|from)\s+{_BASELINE}|({_NUM})\s*%\s*{_LEVEL_WORDS}\b|\b(?:at|to)\s+(?:about\s+|around\s+|roughly\s+)?({_NUM})\s*%(?!\s*{_COMPARATIVE})",
+        rf"({_NUM})\s*%\s*(?:of|from)\s+{_BASELINE}|(?<![-+])(?<![-+]\s)\b(\d+(?:\.\d+)?)\s*%\s*{_LEVEL_WORDS}\b|\b(?:at|to)\s+(?:about\s+|around\s+|roughly\s+)?({_NUM})\s*%(?!\s*{_COMPARATIVE})",
         t,
     )
     if pct is not None:
@@ -464,7 +475,7 @@ def _level(t: str, undirected: bool) -> float | None:
     # "0.6 of normal", "two thirds of the usual brightness", "three quarters as bright", "to 0.8", "level 0.85"
     share = re.search(
         rf"(?<![\w.+-])(\d*\.\d+|[12])\s*(?:of|from)\s+{_BASELINE}|(?<![\w.+-])(\d*\.\d+)\s+(?:as\s+(?:bright|light|strong|intense|much)|the\s+(?:brightness|light\w*|intensity))\b"
-        rf"|\b(?:at|to)\s+(?:about\s+|around\s+|roughly\s+)?(\d*\.\d+)(?![\d%]|\s*(?:x\b|times\b|{_COMPARATIVE}))|\blevel\s*[:=]?\s*(\d*\.\d+)(?![\d%])",
+        rf"|\b(?:at|to)\s+(?:about\s+|around\s+|roughly\s+|the\s+)?(\d*\.\d+)(?![\d%]|\s*(?:x\b|times\b|{_COMPARATIVE}))|\blevel\s*[:=]?\s*(\d*\.\d+)(?![\d%])",
         t,
     )
     if share is not None and not re.search(r"\bby\s+[\d.]", t):
@@ -497,7 +508,8 @@ def read_lighting_request(text: str) -> dict[str, Any] | None:
             value = float(factor.group(1) or factor.group(2) or factor.group(3))
             return _change(value - 1.0)
         if not re.search(r"\d", t):
-            if re.search(r"\bhalf as (?:bright|light|strong|intense)\b|\bhalve[ds]?\b|\bhalf (?:the )?(?:brightness|light)\b", t):
+            if re.search(r"\bhalf as (?:bright|light|strong|intense)\b|\bhalve[ds]?\b|\bhalf (?:the )?(?:brightness|light)\b|"
+                         r"\b(?:to|at) (?:the )?half\b", t):
                 return _change(-0.5)
             if re.search(r"\b(?:twice|double[ds]?) (?:as )?(?:bright|the (?:brightness|light|lighting))?|\bdoubl(?:e|ed|ing)\b", t):
                 return _change(1.0)

@@ -61,7 +61,8 @@ _ADJECTIVE = re.compile(
     r"green|yellow|red|blue|pink|purple|orange|white|black|brown|grey|gray|navy|lime green)\s*)+$"
 )
 _RELATION_WORDS = re.compile(
-    r"\b(?:near|next to|beside|besides|by|close to|closer to|alongside|adjacent to|around|left of|right of|"
+    r"\b(?:near|next to|beside|besides|by|close to|closer to|alongside|adjacent to|around|left of|right of|flanking|"
+    r"surrounding|either side of|on either side of|"
     r"in front of|behind|against|nearby|touching|beneath|under|on top of|on|atop|in|inside|into|between|with)"
     r"(?:\s+(?:of|to))?\s*$"
 )
@@ -113,7 +114,10 @@ def _count(normal: str, default: int = 1) -> int:
 
 def _names(phrase: str, vocab: Vocabulary) -> list[tuple[str, int]]:
     """(catalog name, count) for each catalog name in an object phrase ("two apples and a pear", "apple x2")."""
-    normal = _counted(_norm(phrase, vocab))
+    normal = _counted(_norm(re.sub(r"[\"`]", " ", phrase), vocab))
+    # "a lego brick (green)": a colour said in brackets after the name
+    normal = re.sub(r"([a-z][a-z ]*?)\s*\(\s*(green|yellow|red|blue|pink|purple|orange|white|black|small|large|big)\s*\)",
+                    r"\2 \1", normal)
     out: list[tuple[str, int]] = []
     at = 0
     found = list(vocab.name_pattern.finditer(normal))
@@ -136,8 +140,8 @@ def _names(phrase: str, vocab: Vocabulary) -> list[tuple[str, int]]:
             n = 1
         elif after is not None:
             n = int(after.group(1) or after.group(2))
-        elif re.fullmatch(r"\s*(\d{1,2})\s*[,;:|x×*]?\s*", before):
-            n = int(before.strip(" ,;:|x×*"))  # "2,tennis ball", "2 | plum"
+        elif re.fullmatch(r"\s*(\d{1,2})\s*(?:pcs|pc|pieces|units|ea|x|×)?\s*[,;:|x×*]?\s*", before):
+            n = int(re.search(r"\d+", before).group(0))  # type: ignore[union-attr]  # "2,tennis ball", "2 pcs,peach"
         else:
             n = _count(before.split(",")[-1].split(" and ")[-1]) if _NUMBER.search(before) else 1
             said = m.group(0)
@@ -280,7 +284,8 @@ class _Assembly:
             elif tag == "ANY" and re.search(
                 r"\bup to\s+(?:\d|one|two|three|four|five|six|seven|eight|nine|ten)\b|\b(?:in total|total|in all|overall|"
                 r"altogether)\b", low
-            ) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b", low):
+            ) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b"
+                                          r"(?!\s+(?:others?|more|remaining|extra|random|rest))", low):
                 tag = "TOTAL"
             elif tag == "TOTAL" and re.search(r"\b(?:any|random|other|more|extra|additional|arbitrary)\b", low):
                 tag = "ANY"
@@ -391,7 +396,7 @@ class _Assembly:
         for head in heads:
             noun = head.split()[-1]
             for filled in ([f"{size} {words} {head}", f"{size} {words} {noun}"] if size else []) + [
-                f"{words} {head}", f"{words} {noun}"
+                f"{words} {head}", f"{words} {noun}", f"{words}{noun}"  # "base" of "balls": the baseball
             ]:
                 named = _names(filled, self.vocab)
                 if len(named) == 1 and named[0][0] != words and set(words.split()) <= set(
@@ -501,9 +506,12 @@ class _Assembly:
         if s.tag == "OBJ" and re.fullmatch(r"(?:the )?(?:one|other|other one|another|another one|second|second one|"
                                            r"first|first one|last|last one|remaining one)", s.text.lower().strip(" .,")):
             # "two towels, [one] at the front, [the other] at the back": one of the group said before
-            kind = self._member_name(s, "") or self._group_noun(s.start)
+            kind = self._group_noun(s.start) or self._member_name(s, "")
             if kind is not None:
-                return [_Mention(s.tag, s, kind)]
+                counted = [m for m in self.mentions if m.tag == "OBJ" and m.count > 1 and self._same(m.name, kind)
+                           and self._same_sentence(m.span.end, s.start)]
+                # "[two lemons], [one] on the left and one on the right": the group was counted, "one" places one of it
+                return [_Mention("REF" if counted else s.tag, s, kind)]
         if s.tag in ("OBJ", "DROP") and bare and not _PRONOUN.match(bare) and not _ADJECTIVE.match(bare):
             kind = self._member_name(s, bare)  # "balls: [tennis] and [golf]"
             if kind is not None:
@@ -736,10 +744,8 @@ class _Assembly:
 
     def _display(self, name: str) -> str | None:
         """The catalog's display name of a name the vocabulary knows ("sprite" -> "sprite can")."""
-        oid = self.vocab.name_ids.get(name)
-        if oid is not None:
-            return self.vocab.ids.get(oid)
-        return name if name in self.vocab.ids.values() else None
+        oid = _object_id(self.vocab, name)
+        return self.vocab.ids.get(oid) if oid is not None else None
 
     def _same_sentence(self, a: int, b: int) -> bool:
         lo, hi = min(a, b), max(a, b)
@@ -781,14 +787,23 @@ class _Assembly:
         before = [m for m in self.mentions if m.span.end <= s.start and m.tag != "DROP"]
         if not before:
             return None
-        skip = {x.span for x in self._group_before(s, before)} if s.tag == "POS_ALL" else {before[-1].span}
+        after = [m for m in self.mentions if m.span.start >= s.end and m.tag != "DROP"]
+        if s.tag == "POS_NEXT" and after:
+            skip = {after[0].span}  # "[to its left], a peach": the peach is placed, "its" is something else
+        elif s.tag == "POS_ALL":
+            skip = {x.span for x in self._group_before(s, before)}
+        else:
+            skip = {before[-1].span}
         word = re.search(r"\b(?:it|its|them|their)\b", low)
         assert word is not None
         probe = _Mention("REF", Span("REF", s.start + word.start(), s.start + word.end(), word.group(0)), word.group(0))
         # "a banana to its left, a pear to its right": the same "it" as the position before it in the sentence
-        parallel = [(at, name) for at, name in self._pronoun_refs if self._same_sentence(at, s.start)]
+        def near(a: int) -> bool:  # the same sentence, or the clause after a semicolon
+            return not re.search(r"[.!?\n]", self.text[a:s.start])
+
+        parallel = [(at, name) for at, name in self._pronoun_refs if near(at)]
         parallel += [(x.span.start, x.name) for x in before if x.name and self._placed_by(x)
-                     and self._same_sentence(x.span.end, s.start) and x.span not in skip]
+                     and near(x.span.end) and x.span not in skip]
         ante_name = max(parallel)[1] if parallel else None
         if ante_name is None:
             ante = self._resolve(probe, skip=skip)
@@ -825,8 +840,9 @@ class _Assembly:
             gap = self.text[m.span.end:limit]
             if _SENTENCE_END.search(gap) or ":" in gap or (group and any(
                 p.tag in _POSITION_TAGS and m.span.end <= p.start < limit for p in self.spans
-            )):
-                break
+            )) or (group and re.search(r"(?i)\b(?:then|when|while|whereas|if|after|before|because|but|since|until|where|"
+                                       r"which|so that)\b", gap)):
+                break  # "a red plate, then a plum and a peach around it": the coordination is the plum and the peach
             group.append(m)
             limit = m.span.start
         return list(reversed(group))
@@ -851,7 +867,7 @@ class _Assembly:
         if (
             nxt is not None and nxt.tag in _OBJECT_TAGS and (nxt.start - s.end <= 3 and not re.search(
                 r"[.;:\n]", self.text[s.end:nxt.start]
-            ) or re.fullmatch(r"[\s\"']*[:=][\s\"']*", self.text[s.end:nxt.start]))  # {"near": "mug"}
+            ) or re.fullmatch(r"[\s\"'`]*(?:[:=]|the|a|an)?[\s\"'`]*", self.text[s.end:nxt.start]))  # {"near": "mug"}
             and _RELATION_WORDS.search(normal)
         ):
             ref = next((m for m in self.mentions if m.span == nxt), None)
@@ -1064,16 +1080,80 @@ class _Assembly:
 
     def _antecedent(self, m: _Mention, exclude: _Mention | None = None) -> _Mention | None:
         names = {exclude.name} if exclude is not None and exclude.name and not _PRONOUN.match(exclude.name) else set()
+        if names and self.objects:
+            names |= {o.name for n in list(names) for o in self._find(n) or self._by_head(n)}
         return self._resolve(m, skip={exclude.span} if exclude is not None else None, exclude=names)
 
     def _task_phrase(self, m: _Mention | None, exclude: _Mention | None = None) -> str | None:
-        """The name a task role is read from: pronouns filled in from the text before."""
+        """The name a task role is read from: pronouns filled in from the text before, and one of several objects
+        told apart by where it stands or by its size ("the one at the back", "the big one", "its big sibling")."""
         if m is None:
             return None
+        described = self._described(m, exclude)
+        if described is not None:
+            return described
         if not m.name or _PRONOUN.match(m.name):
             ante = self._antecedent(m, exclude)
             return ante.name if ante is not None else None
         return m.name
+
+    def _described(self, m: _Mention, exclude: _Mention | None) -> str | None:
+        """One object of the scene picked out by position or size words in a task phrase: "the one at the back",
+        "the box at the front", "the back towel", "whichever bowl is on the right", "the one by the pitcher", "the
+        thing in the middle", "the big one", "the bigger of the two", "its big sibling"."""
+        low = _norm(m.span.text, self.vocab)
+        other = {exclude.name} if exclude is not None and exclude.name else set()
+        if exclude is not None and exclude.name:
+            other |= {o.name for o in self._find(exclude.name) or self._by_head(exclude.name)}
+        place = re.search(r"\b(?:left|right|front|back|rear|middle|center|centre|far|near|closest|nearest|farthest)\b", low)
+        near = re.search(r"\b(?:by|near|next to|beside|closest to|nearest to)\s+(?:the\s+)?([a-z0-9' ]+)$", low)
+        size = re.search(r"\b(big|bigger|biggest|large|larger|largest|small|smaller|smallest|little|tiny)\b", low)
+        if place is None and near is None and size is None:
+            return None
+        words = re.sub(r"\b(?:the|a|an|one|ones|thing|object|item|whichever|which|that|is|its|of|two|2|sibling|"
+                       r"twin|brother|sister|partner|on|at|in|to|by|near|next|beside|closest|nearest|farthest|camera|"
+                       r"robot|side|left|right|front|back|rear|middle|center|centre|far|big|bigger|biggest|large|larger|"
+                       r"largest|small|smaller|smallest|little|tiny|stands?|sits?|lies|placed)\b", " ", low)
+        if near is not None:
+            words = words.replace(near.group(1), " ")
+        kind = [w for w in re.findall(r"[a-z]+", words) if len(w) > 2]
+        pool = [o for o in self.objects if not o.unknown and o.name not in other]
+        if kind:
+            head = singular(kind[-1])
+            pool = [o for o in pool if any(singular(w) == head or (len(head) >= 3 and w.endswith(head))
+                                           for w in f"{o.name} {self._display(o.name) or ''}".split())]
+        elif re.search(r"\b(?:sibling|twin|brother|sister|partner)\b", low) and exclude is not None and exclude.name:
+            head = singular((self._display(exclude.name) or exclude.name).split()[-1])
+            pool = [o for o in pool if singular((self._display(o.name) or o.name).split()[-1]) == head]
+        if not pool or len({o.name for o in pool}) < 2 and not (place or near) and exclude is None:
+            return None
+        if near is not None:
+            ref = near.group(1).strip()
+            fits = [o for o in pool if (o.position or {}).get("reference") and self._same(
+                str((o.position or {}).get("reference")), ref) or (o.position or {}).get("reference") in
+                {x.name for x in self._find(ref) or self._by_head(ref)}]
+            return fits[0].name if len({o.name for o in fits}) == 1 else None
+        if place is not None:
+            region = find_region(re.sub(r"\b(?:closest|nearest)\b(?: to the (?:camera|robot))?", "front",
+                                        re.sub(r"\bfarthest\b(?: from the (?:camera|robot))?", "back", low)))
+            if region is not None:
+                want = region[0]
+                fits = [o for o in pool if want in str((o.position or {}).get("region", "")).split("_")
+                        or str((o.position or {}).get("region", "")) == want]
+                if len({o.name for o in fits}) == 1:
+                    return fits[0].name
+            if size is None:
+                return None
+        assert size is not None
+        large = size.group(1) in ("big", "bigger", "biggest", "large", "larger", "largest")
+
+        def is_large(o: _Object) -> bool:
+            said = f"{o.name} {self._display(o.name) or ''}"
+            return re.search(r"\b(?:large|big|extra large)\b", said) is not None
+
+        fits = [o for o in pool if is_large(o) == large]
+        # "the small one ... the big one": one of two told apart, or the one left when the other role took its pair
+        return fits[0].name if len({o.name for o in fits}) == 1 and (len({o.name for o in pool}) >= 2 or exclude) else None
 
     def task(self) -> dict[str, Any] | None:
         kind = self.task_type()
@@ -1191,7 +1271,10 @@ class _Assembly:
             )
             if also:
                 break
-            if member.search(between) or (inside and not also and re.fullmatch(r"\s*(?:,|and)\s*", between)) or re.match(
+            if member.search(between) or (inside and not also and re.fullmatch(
+                r"\s*(?:,|and|,\s*and)?\s*(?:(?:one|another|the other)(?: of them)?(?: (?:is|being|must be|should be))?)?\s*",
+                between,
+            )) or re.match(
                 r"\s*(?:is|are|being|must be|should be)\s+(?:among|one of|part of|included)", tail
             ):
                 count += m.count
@@ -1218,6 +1301,11 @@ def _with_key(s: Span, text: str) -> str:
     stop = [m.end() for m in re.finditer(r"[.!?;,|]\s", prefix)]  # a key never reaches back across a sentence
     prefix = prefix[stop[-1]:] if stop else prefix
     m = re.search(r"([A-Za-z][\w ./-]{0,30})[\"']?\s*[:=]\s*[\"']?\s*$", prefix)
+    cells = re.split(r"[;,\t|]", text[line_start:s.start])
+    if m is None and not cells[-1].strip() and (len(cells) == 2 or len(cells) == 3 and not cells[0].strip()) and (
+        re.fullmatch(r"\s*[A-Za-z][A-Za-z_.\- ]{0,28}\s*", cells[-2]) and len(cells[-2].split()) <= 3
+    ):
+        return f"{cells[-2].strip()}: {s.text}"  # "cam_dy_cm,1.5", "| cam yaw | -2 |": the row's own key
     if m is None and re.fullmatch(r"[^|\n][^\n]*[;,\t|]\s*", text[line_start:s.start]) and line_start > 0:
         # a CSV row under its header: the column's name is the key ("cam_pitch_deg;cam_dx_cm" / "...;-1;2")
         header = text[text.rfind("\n", 0, line_start - 1) + 1:line_start - 1]

@@ -215,6 +215,14 @@ _TENS = {"twenty": 20, "thirty": 30, "forty": 40, "fifty": 50, "sixty": 60, "sev
 def _digits(text: str) -> str:
     for pattern, digit in _NUMBER_PHRASES:
         text = re.sub(pattern, digit, text)
+    # "one hundred twenty percent", "a hundred and ten": hundreds
+    small = "|".join(k for k, v in _NUMBER_WORDS.items() if 1 <= v <= 19)
+    text = re.sub(
+        rf"\b(?:a|one) hundred(?:(?: and)? ({'|'.join(_TENS)})(?:[ -]({small}))?|(?: and)? ({small}))?\b",
+        lambda m: str(100 + (_TENS[m.group(1)] if m.group(1) else 0) + (_NUMBER_WORDS[m.group(2)] if m.group(2) else 0)
+                      + (_NUMBER_WORDS[m.group(3)] if m.group(3) else 0)),
+        text,
+    )
     # "twenty five percent", "thirty-five", "forty": tens and units as one number
     units = "|".join(k for k, v in _NUMBER_WORDS.items() if 1 <= v <= 9)
     text = re.sub(
