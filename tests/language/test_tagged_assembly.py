@@ -402,3 +402,29 @@ def test_a_group_is_the_words_joined_as_one_list(vocab):
                "[[the plum|SRC]]", vocab)
     assert positions(ops)["lemon"] == positions(ops)["plum"] == {"relation": "near", "reference": "red plate"}
     assert positions(ops)["red plate"] is None
+
+
+def test_an_untagged_item_of_a_tagged_list_is_an_object(vocab):
+    ops = read("Objects: a stapler, [[a marker|OBJ]] and [[a padlock|OBJ]] ([[3|TOTAL]]). [[lift|PICK]] [[the marker|SRC]]",
+               vocab)
+    assert objects(ops) == ["stapler", "marker", "padlock"]
+    data = read("OBJ: [[bowl|OBJ]]; [[spoon|OBJ]]; headphones\nTASK: [[spoon|SRC]] [[into|IN]] [[bowl|TGT]]", vocab)
+    assert objects(data) == ["bowl", "spoon", "headphones"]
+    header = read("two pears, [[a green one|OBJ]] and [[a plain one|OBJ]], and [[a bowl|OBJ]]. [[lift|PICK]] "
+                  "[[the bowl|SRC]]", vocab)
+    assert len(objects(header)) == 3  # a counted plural introduces its members, it is no item of its own
+
+
+def test_an_untagged_arrow_and_a_destination_phrase_holding_both_names(vocab):
+    arrow = read("[[lemon|OBJ]], [[bowl|OBJ]]. Task: [[lemon|SRC]] -> [[bowl|TGT]]", vocab)
+    assert task(arrow)["type"] == "put_in"  # into a container
+    onto = read("[[pear|OBJ]], [[plate|OBJ]]. Task: [[pear|SRC]] → [[plate|TGT]]", vocab)
+    assert task(onto)["type"] == "put_on"
+    both = read("[[apple|OBJ]]; [[sponge|OBJ]]\ntask;[[put_on|ON]];[[apple;sponge|TGT]]", vocab)
+    assert task(both) == {"type": "put_on", "source": "apple", "target": "sponge"}
+
+
+def test_a_camera_amount_takes_the_direction_left_between_its_words(vocab):
+    ops = read("[[a mug|OBJ]]. [[lift|PICK]] [[the mug|SRC]]. [[Camera|CAM]] down 6 cm, sorry, [[2 cm|CAM]].", vocab)
+    cam = next(op for op in ops["operations"] if op["op"] == "move_camera")
+    assert cam["translation_m"] == pytest.approx([0.0, 0.0, -0.02])

@@ -137,12 +137,30 @@ def test_the_tagger_reads_a_correction(tagger, text):
 
 
 def test_the_tagger_keeps_only_the_lighting_that_holds(tagger):
-    tags = _tags(tagger, "Two apples and a mug. Make the lights 30% brighter. Hmm, no, darker. Pick up an apple.")
+    text = "Two apples and a mug. Make the lights 30% brighter. Hmm, no, darker. Pick up an apple."
+    tags = _tags(tagger, text)
     said = " ".join(tags.get("LIGHT", []))
-    assert "darker" in said and "brighter" not in said
+    assert said.strip().endswith("darker")  # the correction is marked as what holds
+    # and the scene read from the marked words is the corrected one: darker by the 30% said first
+    from ladev_lib.catalog import load_catalog
+    from ladev_lib.language.scene.tagged import read_tagged
+    from ladev_lib.language.scene.words import Vocabulary
+    from ladev_lib.scenes.text_to_scene import object_listing
+
+    ops = read_tagged(text, Vocabulary.from_objects(object_listing(load_catalog(None))))
+    light = [op for op in ops["operations"] if op["op"] == "set_lighting"]
+    assert light and light[0]["intensity_delta"] == pytest.approx(-0.3)
 
 
 def test_long_texts_are_read_in_pieces(tagger):
     filler = "We talked about the demo for a while and nothing here is part of the scene. " * 40
     spans = tagger.tag(filler + "Put a carrot on the plate.")
     assert any(s.tag == "SRC" and s.text == "a carrot" for s in spans)
+
+
+def test_a_phrase_ends_with_the_word_it_ends_in():
+    from ladev_lib.language.tagging.model import _whole_words
+
+    text = "light: {change: -0.3}, ball: rcquetball"
+    spans = [Span("LIGHT", 16, 19, text[16:19]), Span("OBJ", 29, 33, text[29:33])]
+    assert [s.text for s in _whole_words(text, spans)] == ["-0.3", "rcquetball"]

@@ -74,6 +74,12 @@ _TASK_CUE = (
     r"nudge|nudges|shove|shoves|tuck|tucks|pop|pops|toss|tosses|nest|nests|drag|drags|transfer|transfers|deposit|"
     r"insert|inserts|load|loads|then|next|finally|afterwards|ends?|finish(?:es)?)\b|->|=>|\?"
 )
+_ORDINALS = frozenset({"first", "second", "third", "fourth", "fifth", "sixth", "seventh", "last", "next", "other"})
+_NOT_ITEMS = frozenset({
+    "lighting", "light", "lights", "camera", "cam", "setup", "table", "scene", "task", "objects", "object", "things",
+    "thing", "items", "item", "robot", "arm", "gripper", "default", "normal", "same", "nothing", "none", "rest",
+    "others", "random", "stuff", "everything", "anything", "something", "brightness", "view", "change", "changes",
+})
 _STOPWORDS = frozenset({"the", "a", "an", "of", "and", "or", "to", "in", "on", "at", "with", "some", "any"})
 
 
@@ -323,6 +329,7 @@ class _Assembly:
                 new = {"SRC": "OBJ", "TGT": "REF", "NEAR": "POS", "ON": "POS", "IN": "POS"}.get(t.tag)
                 if new is not None:
                     out[j] = Span(new, t.start, t.end, t.text)
+        out = self._listed_items(out)
         # "[cup] with [a handle]": two object phrases that together are one catalog name are that object
         joined: list[Span] = []
         for s in out:
@@ -337,6 +344,48 @@ class _Assembly:
                     continue
             joined.append(s)
         self.spans = joined
+
+    def _listed_items(self, spans: list[Span]) -> list[Span]:
+        """An item of a list of tagged objects that the tagger left untagged ("a book, [a coffee can] and [a cup]",
+        "[mug]; [fork]; calculator"): an object phrase too, when its head is an English noun."""
+        from ladev_lib.language.wordnet import default_nouns
+
+        nouns = default_nouns()
+        if nouns is None:
+            return spans
+        # "a book", "an eraser"; a bare noun only in a list of bare nouns separated by ";" ("mug; fork; calculator")
+        item = r"(?:an?\s+[A-Za-z][A-Za-z-]*(?:\s+[A-Za-z][A-Za-z-]*){0,2}|(?<=;)\s*[A-Za-z][A-Za-z-]*|(?<=; )[A-Za-z][A-Za-z-]*)"
+        sep = r"(?:,|;|\band\b|,\s*and\b|\bplus\b)"
+        objs = [s for s in spans if s.tag == "OBJ"]
+        found: list[tuple[int, int]] = []
+        for a, b in zip(objs, objs[1:], strict=False):
+            gap = self.text[a.end:b.start]
+            m = re.fullmatch(rf"\s*{sep}\s*({item})\s*{sep}\s*", gap)
+            if m is not None:
+                found.append((a.end + m.start(1), a.end + m.end(1)))
+        if objs:
+            first, last = objs[0], objs[-1]
+            line_start = self.text.rfind("\n", 0, first.start) + 1
+            lead = re.search(rf"[:=]\s*({item})\s*{sep}\s*$", self.text[line_start:first.start])
+            if lead is not None:
+                found.append((line_start + lead.start(1), line_start + lead.end(1)))
+            line_end = self.text.find("\n", last.end)
+            tail = re.match(rf"\s*[,;]\s*({item})\s*(?:[.;]?\s*$)", self.text[last.end:line_end if line_end >= 0 else len(self.text)])
+            if tail is not None and objs[-2:-1] and re.fullmatch(r"\s*[,;]\s*", self.text[objs[-2].end:last.start]):
+                found.append((last.end + tail.start(1), last.end + tail.end(1)))
+        taken = [(s.start, s.end) for s in spans]
+        added: list[Span] = []
+        for start, end in found:
+            words = self.text[start:end].lower().split()
+            head = words[-1]
+            if head != singular(head) and not re.fullmatch(PAIRED_NOUNS, head) or head in _ORDINALS:
+                continue  # "two apples, [a red one] and [a plain one]": a plural introduces its members
+            if any(start < e and s0 < end for s0, e in taken) or head in _NOT_ITEMS or not (
+                nouns.senses(head) or nouns.senses(singular(head))
+            ):
+                continue
+            added.append(Span("OBJ", start, end, self.text[start:end]))
+        return sorted([*spans, *added], key=lambda s: s.start) if added else spans
 
     # -- mentions ---------------------------------------------------------------
     def _group_head(self, pos: int) -> str | None:
@@ -1162,8 +1211,17 @@ class _Assembly:
             if src_m is None:
                 return None
             kind = "pick_up" if tgt_m is None else "move_near"
+            if tgt_m is not None and re.fullmatch(r"\s*(?:->|→|=>|-->|—>|>)\s*", self.text[src_m.span.end:tgt_m.span.start]):
+                # "orange -> basket" with the arrow untagged: into a container, onto anything else
+                oid = _object_id(self.vocab, self._task_phrase(tgt_m) or "")
+                kind = "put_in" if oid is not None and oid in self.vocab.containers else "put_on"
         src = self._task_phrase(src_m, exclude=tgt_m if kind != "pick_up" else None)
         tgt = self._task_phrase(tgt_m, exclude=src_m) if kind != "pick_up" else None
+        if kind is not None and kind != "pick_up" and src_m is None and tgt_m is not None:
+            both = [canonical_name(self.vocab, m.group(0)) for m in self.vocab.name_pattern.finditer(
+                _norm(tgt_m.span.text, self.vocab))]
+            if len(both) == 2:  # "put_on;[apple;sponge]": the object and the destination in one phrase
+                return self._ground_task(kind, both[0], both[1])
         if kind != "pick_up" and tgt_m is None and src_m is not None:
             # "put_in dice mug", "put_on;apple;sponge": the object and the destination in one phrase
             both = [canonical_name(self.vocab, m.group(0)) for m in self.vocab.name_pattern.finditer(
@@ -1358,6 +1416,7 @@ def _environment(spans: list[Span], text: str, vocab: Vocabulary) -> list[dict[s
         elif op["intensity_delta"] != 0.0:
             ops.append(op)
     if cam:
+        cam = _with_gap_directions(cam, text)
         said = _joined(cam, text)
         op = read_camera_request(said)
         if op is None:
@@ -1368,6 +1427,27 @@ def _environment(spans: list[Span], text: str, vocab: Vocabulary) -> list[dict[s
         elif any(op["translation_m"]) or any(op["rotation_deg"]):
             ops.append(op)
     return ops
+
+
+_GAP_DIRECTION = re.compile(
+    r"(?i)\b(?:left|right|up|down|higher|lower|forward|forwards|closer|back|backward|backwards|further back|away|in|out|"
+    r"clockwise|counter[- ]?clockwise|anti[- ]?clockwise)\b"
+)
+
+
+def _with_gap_directions(cam: list[Span], text: str) -> list[Span]:
+    """ "[[Camera|CAM]] back 10 cm, sorry, [[4 cm|CAM]]": an amount with no direction of its own takes the direction
+    words left untagged between it and the camera words before it (the corrected amount is not taken)."""
+    out = list(cam)
+    for k in range(1, len(out)):
+        prev, cur = out[k - 1], out[k]
+        if _GAP_DIRECTION.search(cur.text) or _GAP_DIRECTION.search(prev.text) or not re.search(r"\d", cur.text):
+            continue
+        gap = text[prev.end:cur.start]
+        found = _GAP_DIRECTION.search(gap)
+        if found is not None and re.search(r"\d", gap[found.end():]):
+            out[k] = Span(cur.tag, cur.start, cur.end, f"{found.group(0)} {cur.text}")
+    return out
 
 
 def assemble(

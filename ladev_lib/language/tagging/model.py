@@ -316,9 +316,28 @@ class Tagger:
                     labels = decode(logits[row][:n], tokens, offsets)
                     for s in _token_spans(piece, offsets, labels, tokens, logits[row][:n]):
                         out[i].append(Span(s.tag, s.start + offset, s.end + offset, s.text))
-        for spans in out:
+        for i, spans in enumerate(out):
             spans.sort(key=lambda s: s.start)
+            out[i] = _whole_words(texts[i], spans)
         return out
+
+
+def _whole_words(text: str, spans: list[Span]) -> list[Span]:
+    """Spans that end inside a word or number end with it ("[[-0.|LIGHT]]3" -> "[[-0.3|LIGHT]]"), up to the next
+    phrase's start."""
+    out: list[Span] = []
+    for k, s in enumerate(spans):
+        limit = spans[k + 1].start if k + 1 < len(spans) else len(text)
+        end = s.end
+        while end < limit and end > 0 and (
+            text[end].isalnum() and text[end - 1].isalnum()
+            or text[end].isdigit() and text[end - 1] in ".,"
+            and end - 2 >= 0 and text[end - 2].isdigit()
+            or text[end].isdigit() and text[end - 1] in ".-+" and (end - 2 < 0 or not text[end - 2].isalnum())
+        ):
+            end += 1
+        out.append(s if end == s.end else Span(s.tag, s.start, end, text[s.start:end]))
+    return out
 
 
 @functools.lru_cache(maxsize=2)
