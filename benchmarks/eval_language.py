@@ -108,6 +108,12 @@ SETS: dict[str, tuple[Path, str]] = {
         "second reading was settled; scored once with the parser alone at 152d3a6 (1.000 / 0.782) and once with "
         "the second reading (1.000 / 0.927), before its rows were read",
     ),
+    "open_vocab_holdout13": (
+        ROOT / "tests/data/paraphrase_pairs_open_vocab_holdout13.csv",
+        "thirteenth open-vocabulary held-out set (100, 55 same / 45 different, 41 with scene_objects), written blind "
+        "by a helper given only the labelling rules; scored once at 8e7223f (with the retrained tagger) before its rows "
+        "were read: 1.000 / 0.873 with the second reading, parser alone 1.000 / 0.800",
+    ),
     "libero_pro": (DEV / "libero_pro_pairs.csv", "LIBERO-PRO paraphrases and task changes (dev data, written outside the team)"),
 }
 FIRST_SCORES: dict[str, tuple[float, float, str]] = {
@@ -124,6 +130,7 @@ FIRST_SCORES: dict[str, tuple[float, float, str]] = {
     "open_vocab_holdout10": (1.000, 0.782, "blind"),
     "open_vocab_holdout11": (0.962, 0.909, "blind, with the second reading; parser alone 1.000 / 0.673"),
     "open_vocab_holdout12": (1.000, 0.927, "blind, with the second reading; parser alone 1.000 / 0.782"),
+    "open_vocab_holdout13": (1.000, 0.873, "blind, with the second reading; parser alone 1.000 / 0.800"),
 }
 """First scores of the held-out sets: the held-out figures. Every later figure of a set is a
 development figure (its errors were looked at and general fixes followed)."""
@@ -415,6 +422,13 @@ SCENE_SETS: dict[str, tuple[Path, str]] = {
         "scored once at 152d3a6, the tagged reader once at 1bcc10b (its final form this session), before its rows "
         "were read",
     ),
+    "scene_descriptions_holdout15": (
+        ROOT / "tests/data/scene_descriptions_holdout15.jsonl",
+        "fifteenth held-out set (100; eight styles, 12-13 each: the paper's structure, prose, terse lists, command "
+        "lines, unspecified objects, conversation, corrections, data snippets), written blind by a helper that read "
+        "only the dev README; both readers scored once at 8e7223f (the retrained tagger), before its rows were read; "
+        "developed on since",
+    ),
 }
 def _figures(label: str, exact: float, fields: Sequence[float]) -> dict[str, object]:
     names = ("n_objects", "required_objects", "task", "lighting", "camera", "positions", "unavailable", "feasibility")
@@ -468,6 +482,10 @@ SCENE_FIRST: dict[str, list[dict[str, object]]] = {
         _figures("rules, first (blind, 152d3a6)", 0.800, (0.950, 0.988, 0.988, 0.963, 0.925, 0.988, 0.950, 1.000)),
         _figures("tagged, first (blind, 246068e)", 0.850, (0.975, 1.000, 1.000, 0.963, 0.913, 1.000, 1.000, 1.000)),
     ],
+    "scene_descriptions_holdout15": [
+        _figures("rules, first (blind, 8e7223f)", 0.570, (0.700, 0.850, 0.780, 0.920, 0.900, 0.940, 0.880, 0.880)),
+        _figures("tagged, first (blind, 8e7223f)", 0.780, (0.890, 0.940, 0.910, 0.980, 0.940, 0.980, 0.990, 0.970)),
+    ],
     "scene_descriptions_holdout14": [
         _figures("rules, first (blind, 152d3a6)", 0.675, (0.838, 0.925, 0.887, 0.925, 0.887, 0.938, 0.900, 0.950)),
         _figures("tagged, first (blind, 1bcc10b)", 0.863, (0.963, 0.988, 0.963, 0.988, 0.925, 1.000, 1.000, 0.988)),
@@ -482,17 +500,23 @@ TAGGED_NOTES = (
     "from the marked phrases by `ladev_lib/language/scene/tagged.py` (catalog names, counts, regions, amounts "
     "and directions read by rules, grounding by the instruction reader). The rule reader of the earlier rounds "
     "stays available as `compile.reader: rules`.",
-    "The tagger was trained on 4,100 annotated descriptions (3,600 written for it by sixteen helpers that read "
-    "only the annotation guide and the dev README's conventions, 500 of the offline writer's own styles) and "
-    "1,905 annotated instructions (`training/`, `ladev train-reader`). No row of any set below was used to "
-    "train it. Its assembly rules were developed while reading its errors on the dev set and, after its first "
-    "score, on `scene_descriptions_holdout13`; the rows of sets 1-12 were never read while it was built (only "
-    "their pooled scores watched), and `scene_descriptions_holdout14` was scored once, blind, at the end. For "
-    "the rule reader, sets 1-12 and 13 are development sets (their first scores are its held-out figures); the "
-    "pooled 'rules now' line therefore mixes its development figures with one blind set.",
-    "First scores on blind sets, rule reader then tagged reader: round 13 (80 descriptions) 0.800 and 0.850; "
-    "round 14 (80) 0.675 and 0.863. The target (0.95 on text not tuned on) is not met; the tagged reader's "
-    "weakest fields on unseen text are the camera (0.93-0.96) and the object count (0.92-0.98).",
+    "The tagger is trained (`ladev train-reader`, about 27 min on two cores) on 5,100 annotated descriptions "
+    "(4,600 written for it by twenty helpers that read only the annotation guide and the dev README's "
+    "conventions, 500 of the offline writer's own styles) and 1,905 annotated instructions, counted twice "
+    "(`training/`). No row of any set below trains it.",
+    "The two parts are measured apart by `benchmarks/eval_reader_parts.py` on the training rows, whose tags are "
+    "known: the assembly reading each row's own tags (no tagger) gives 0.980 scene-exact on all 4,600 written "
+    "rows (0.902 when this was first measured; it was developed on rows a-p, and rows q-t, written later, read "
+    "0.948 and 0.904 the first time); the same 305 rows held out of the tagger's training give 0.980 on their own "
+    "tags and 0.843 through the tagger, so the tagger's marks, not the assembly, are now most of what is lost on "
+    "new text.",
+    "Blind rounds for the tagged reader, first scores (rule reader in brackets): round 13 (80) 0.850 (0.800); "
+    "round 14 (80) 0.863 (0.675); round 15 (100, written with data snippets, command lines and corrections "
+    "as a quarter of its rows) 0.780 (0.570) - by style 1.000 for the paper's structure, 0.92 for prose, "
+    "conversation and terse lists, 0.83 for unspecified objects, 0.58 for corrections, 0.54 for command lines "
+    "and 0.50 for data snippets. The target (0.95 on text not tuned on) is not met. Sets 1-12 were never read "
+    "while the tagged reader was built (only their pooled score was watched): pooled (630 rows), 0.883 with the "
+    "code and weights of 8f84444 (the start of this work) and 0.933 now. Rounds 13-15 and the dev set are development sets for it.",
 )
 SCENE_NOTES = (
     "`scene_descriptions_holdout` (30 rows, `tests/data/`) was written in our own words before the reader "
@@ -599,11 +623,15 @@ def scene_section() -> list[str]:
             f"| {name} | {counts[name]} | {rules_first} | {float(measured[name]['rules']['scene_exact']):.3f} | "  # type: ignore[arg-type]
             f"{first(name, 'tagged')} | **{float(measured[name]['tagged']['scene_exact']):.3f}** |"  # type: ignore[arg-type]
         )
-    unseen = [n for n in measured if n not in ("scene_descriptions_dev", "scene_descriptions_holdout13")]
+    # sets 1-12: never read while the tagged reader was built (only their pooled score watched)
+    unseen = [n for n in measured if n not in (
+        "scene_descriptions_dev", "scene_descriptions_holdout13", "scene_descriptions_holdout14",
+        "scene_descriptions_holdout15",
+    )]
     for label in ("tagged", "rules"):
         total = sum(counts[n] for n in unseen)
         exact = sum(float(measured[n][label]["scene_exact"]) * counts[n] for n in unseen) / max(total, 1)  # type: ignore[arg-type]
-        lines.append(f"| held-out sets 1-12 and 14 pooled, {label} reader now | {total} | | | | {exact:.3f} |")
+        lines.append(f"| held-out sets 1-12 pooled, {label} reader now | {total} | | | | {exact:.3f} |")
     lines.append("")
     for name, (rows_path, about) in SCENE_SETS.items():
         lines += [f"### {name}: {about}", ""]

@@ -51,10 +51,12 @@ def find_renderer() -> Renderer | None:
 
 def _reading(description: str) -> str:
     """The description with the span tagger's marks: what the offline tagged reader took each phrase to say."""
+    from ladev_lib.language.scene.tagged import plain_code
     from ladev_lib.language.tagging.markup import to_markup
     from ladev_lib.language.tagging.model import load_tagger
 
-    return to_markup(description, load_tagger().tag(description))
+    text = plain_code(description)
+    return to_markup(text, load_tagger().tag(text))
 
 
 def _print_text(result: CompiledScene, description: str, backend: str, reading: str | None = None) -> None:

@@ -48,6 +48,21 @@ from ladev_lib.language.tokens import tag_tokens
 _ACTIONS = frozenset({"pick", "place", "place_nodest", "other", "release"})
 
 
+_SPOKEN = (
+    (r"full stop|period|new line|new paragraph", "."), (r"comma", ","), (r"question mark", "?"),
+    (r"exclamation (?:mark|point)", "!"), (r"colon", ":"),
+)
+
+
+def _spoken_punctuation(text: str) -> str:
+    """Punctuation said in words by someone dictating ("... in the basket full stop", "comma please") as the marks
+    themselves; the same words after a determiner stay words ("the trial period")."""
+    for said, mark in _SPOKEN:
+        text = re.sub(rf"(?i)(?<!\bthe )(?<!\ba )\b(?:{said})\b(?=\s*(?:$|[.!?,;]|(?:please|thanks|thank you|then|and|"
+                      rf"okay|ok|now|next|after that|robot)\b))", f"{mark} ", text)
+    return re.sub(r"[ \t]{2,}", " ", re.sub(r"\s+([.,!?:])", r"\1", text)).strip()
+
+
 @dataclass(frozen=True)
 class InstructionParse:
     """What an instruction asks for, as far as it can be read."""
@@ -677,7 +692,7 @@ class InstructionParser:
         scene = frozenset(scene_objects) if scene_objects else None
         if not text or not text.strip():
             return Frame(text, None, reason="empty instruction"), {}
-        tokens = tag_tokens(text, self.index)
+        tokens = tag_tokens(_spoken_punctuation(text), self.index)
         reader = ClauseReader(self.index, scene)
         clauses = [reader.read(c) for c in split_clauses(tokens)]
         if not clauses:

@@ -420,7 +420,17 @@ class _Compilation:
         if pos is None:
             return PlacementRequest(obj)
         if pos.x is not None and pos.y is not None:
-            return PlacementRequest(obj, pos.x, pos.y)
+            x, y = pos.x, pos.y
+            if self.nudge_m > 0:
+                # a description's coordinates state no frame: a point off the table is taken to its nearest edge
+                (x0, x1), (y0, y1) = self.bounds.workspace_x_m, self.bounds.workspace_y_m
+                x, y = min(max(x, x0), x1), min(max(y, y0), y1)
+                if (x, y) != (pos.x, pos.y):
+                    self.notes.append(
+                        f"{obj.display_name!r} at ({pos.x:.2f}, {pos.y:.2f}) is off the workspace: placed at its edge, "
+                        f"({x:.2f}, {y:.2f})"
+                    )
+            return PlacementRequest(obj, x, y)
         if pos.region is not None:
             xr, yr = region_box(pos.region, self.bounds)
             return PlacementRequest(obj, x_range=xr, y_range=yr, widen=True)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from ladev_lib.language.frames import read_instruction
 from ladev_lib.language.instructions import basic_instruction
 from ladev_lib.language.parser import InstructionParser, parse_instruction
 
@@ -162,3 +163,19 @@ def test_canonical_text_replaces_only_names(catalog):
     assert parser.canonical_text("Could you lift the Can of Coke?") == "Could you lift the coke can?"
     assert parser.canonical_text("toss the aubergine into the bin") == "toss the eggplant into the basket"
     assert parser.canonical_text("pick up the coke can") == "pick up the coke can"
+
+
+@pytest.mark.parametrize("said", [
+    "put the ladle in the pot full stop",
+    "okay robot put the ladle in the pot period thanks",
+    "put the ladle in the pot comma thanks",
+])
+def test_punctuation_said_in_words(said):
+    frame = read_instruction(said)
+    assert frame.task == "put_in" and frame.reason is None
+
+
+def test_a_punctuation_word_inside_a_name_stays_a_word():
+    from ladev_lib.language.parser import _spoken_punctuation
+
+    assert _spoken_punctuation("set the trial period timer on the tray") == "set the trial period timer on the tray"

@@ -428,3 +428,42 @@ def test_a_camera_amount_takes_the_direction_left_between_its_words(vocab):
     ops = read("[[a mug|OBJ]]. [[lift|PICK]] [[the mug|SRC]]. [[Camera|CAM]] down 6 cm, sorry, [[2 cm|CAM]].", vocab)
     cam = next(op for op in ops["operations"] if op["op"] == "move_camera")
     assert cam["translation_m"] == pytest.approx([0.0, 0.0, -0.02])
+
+
+def test_a_description_written_as_code_is_read_as_its_words():
+    from ladev_lib.language.scene.tagged import plain_code
+
+    said = "add('pear'); add('bowl', pos='left'); task('put_in', 'pear', 'bowl'); camera(yaw=2)"
+    assert plain_code(said) == "add pear ; add bowl, pos left ; task put_in, pear, bowl ; camera yaw 2"
+    prose = "Put the pear (the ripe one) in the bowl; camera yaw=2."
+    assert plain_code(prose) == prose  # one call-like bracket is no code
+
+
+def test_a_change_taken_back_after_its_words_is_no_change(vocab):
+    ops = read("[[a mug|OBJ]]. [[lift|PICK]] [[the mug|SRC]]. Lighting: [[a bit brighter|LIGHT]], actually no change. "
+               "[[Camera 2 cm left|CAM]]... no, don't move it.", vocab)
+    assert not [op for op in ops["operations"] if op["op"] in ("set_lighting", "move_camera")]
+
+
+def test_a_corrected_amount_keeps_the_direction_and_axis_said_before(vocab):
+    ops = read("[[a mug|OBJ]]. [[lift|PICK]] [[the mug|SRC]]. [[Lights|LIGHT]] 30% darker - no, [[make it 10%|LIGHT]]. "
+               "Camera: [[pan right 1 degree|CAM]] and roll 2 degrees clockwise; correction, [[roll counterclockwise|CAM]].",
+               vocab)
+    light = next(op for op in ops["operations"] if op["op"] == "set_lighting")
+    cam = next(op for op in ops["operations"] if op["op"] == "move_camera")
+    assert light["intensity_delta"] == pytest.approx(-0.1)
+    assert cam["rotation_deg"] == pytest.approx([2.0, 0.0, -1.0])  # spec frame: roll, pitch, yaw
+
+
+def test_make_one_object_another_in_one_phrase(vocab):
+    ops = read("Objects: [[a bowl|OBJ]] and [[a knife|DROP]] - hmm, make [[the knife a fork|OBJ]]. [[lift|PICK]] "
+               "[[the fork|SRC]]", vocab)
+    assert objects(ops) == ["bowl", "fork"]
+
+
+def test_the_object_left_untagged_before_its_destination_and_fillers_as_random(vocab):
+    ops = read("obj: [[pear|OBJ]], [[mug|OBJ]]; task: [[move_near|NEAR]] pear->[[mug|TGT]]", vocab)
+    assert task(ops) == {"type": "move_near", "source": "pear", "target": "mug"}
+    fill = read("[[Two filler objects|TOTAL]] plus [[a bowl|OBJ]] and [[a plum|OBJ]]. Drop [[the plum|SRC]] [[in|IN]] "
+                "[[the bowl|TGT]].", vocab)
+    assert objects(fill).count(None) == 2 and len(objects(fill)) == 4

@@ -180,6 +180,18 @@ def test_a_descriptions_colliding_coordinates_are_moved_to_the_nearest_clear_poi
     assert (banana.x, banana.y) == pytest.approx((0.0, 0.0))  # the first object keeps its point
 
 
+def test_a_described_point_off_the_workspace_goes_to_its_edge(catalog, exact_resolver):
+    o = ops(add("apple", x=0.0, y=0.0), add("bowl", x=0.3, y=-0.1),
+            task={"type": "put_in", "source": "apple", "target": "bowl"})
+    exact = compile_(o, catalog, exact_resolver)
+    assert not exact.ok and "outside the workspace" in exact.reason  # operations given as data are exact
+    out = compile_(o, catalog, exact_resolver, approximate_coordinates=True)
+    assert out.ok, out.reason
+    bowl = next(ob for ob in out.spec.objects if ob.id == "024_bowl")
+    assert bowl.x == pytest.approx(0.15) and bowl.y == pytest.approx(-0.1)
+    assert any("off the workspace" in n and "bowl" in n for n in out.notes), out.notes
+
+
 def test_a_study_scene_must_match_its_design(catalog, exact_resolver):
     o = ops(add("apple"), add(), task={"type": "pick_up", "source": "apple"})
     ok = compile_(o, catalog, exact_resolver, expected=DesignExpectation("pick_up", 2, "simpler", "default"))

@@ -293,7 +293,8 @@ class _Assembly:
             ) or tag == "ANY" and re.match(r"\s*(?:just |only )?(?:the|those|these)\s+(?:\d+|two|three|four|five|six|seven)\b"
                                           r"(?!\s+(?:others?|more|remaining|extra|random|rest))", low):
                 tag = "TOTAL"
-            elif tag == "TOTAL" and re.search(r"\b(?:any|random|other|more|extra|additional|arbitrary)\b", low):
+            elif tag == "TOTAL" and re.search(r"\b(?:any|random|other|more|extra|additional|arbitrary|fillers?|"
+                                              r"distractors?|spare|decoys?|filler objects?)\b", low):
                 tag = "ANY"
             elif tag in ("CAM", "LIGHT") and re.fullmatch(r"\(?\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*,\s*[-+]?[\d.]+\s*(?:cm|mm|m)?\s*\)?", low) \
                     and re.search(r"(?:\bto|\bat|@)\s*\(?\s*$", before):
@@ -544,6 +545,10 @@ class _Assembly:
             member = self._member_name(s, words0)
             if member is not None:
                 return [_Mention(s.tag, s, member, count=_count(_norm(s.text, self.vocab)) if s.tag == "OBJ" else 1)]
+        if len(found) == 2 and s.tag == "OBJ" and re.match(r"(?i)\s*(?:the|that|this)\s+\S.*?\s+(?:an?|into an?|to an?)\s+\S",
+                                                          s.text) and re.search(r"(?i)\bmake\s*$", self.text[:s.start]):
+            # "make [the fork a spoon]": the first is replaced by the second
+            return [_Mention("DROP", s, found[0][0]), _Mention("OBJ", s, found[1][0], count=found[1][1])]
         if len(found) > 1 and s.tag in ("OBJ", "DROP", "REF"):
             return [_Mention(s.tag, s, name, count=n) for name, n in found]  # "a fork and a spoon" as one phrase
         if found:
@@ -1218,6 +1223,12 @@ class _Assembly:
         src = self._task_phrase(src_m, exclude=tgt_m if kind != "pick_up" else None)
         tgt = self._task_phrase(tgt_m, exclude=src_m) if kind != "pick_up" else None
         if kind is not None and kind != "pick_up" and src_m is None and tgt_m is not None:
+            rel = [t for t in self.spans if t.tag in RELATION_TAGS and t.end <= tgt_m.span.start]
+            lo = rel[-1].end if rel else max(self.text.rfind(c, 0, tgt_m.span.start) for c in ".;\n:") + 1
+            between = list(self.vocab.name_pattern.finditer(_norm(self.text[lo:tgt_m.span.start], self.vocab)))
+            if len(between) == 1 and self._task_phrase(tgt_m):
+                # "move_near fork->[knife]": the object left untagged between the relation and the destination
+                return self._ground_task(kind, canonical_name(self.vocab, between[0].group(0)), self._task_phrase(tgt_m))
             both = [canonical_name(self.vocab, m.group(0)) for m in self.vocab.name_pattern.finditer(
                 _norm(tgt_m.span.text, self.vocab))]
             if len(both) == 2:  # "put_on;[apple;sponge]": the object and the destination in one phrase
@@ -1405,7 +1416,12 @@ def _environment(spans: list[Span], text: str, vocab: Vocabulary) -> list[dict[s
     ops: list[dict[str, Any]] = []
     light = [s for s in spans if s.tag == "LIGHT"]
     cam = [s for s in spans if s.tag == "CAM"]
+    if light and _taken_back(light[-1], text, "light"):
+        light = []  # "slightly darker, actually no change"
+    if cam and _taken_back(cam[-1], text, "camera"):
+        cam = []
     if light:
+        light = _with_gap_light_direction(light, text)
         said = _joined(light, text)
         op = read_lighting_request(said)
         if op is None:
@@ -1435,6 +1451,40 @@ _GAP_DIRECTION = re.compile(
 )
 
 
+def _taken_back(last: Span, text: str, what: str) -> bool:
+    """Whether the words after the last lighting / camera phrase take the change back ("slightly darker, actually
+    no change", "camera 2 cm left... no, don't move it")."""
+    after = text[last.end:last.end + 80]
+    after = re.split(r"(?<!\.)[.!?](?!\.)\s+(?=[A-Z])|\n", after)[0].lower()  # up to the next sentence or line
+    it = r"(?:it|them|the lights?|the lighting|the camera|that)"
+    return re.match(
+        rf"\W*(?:(?:actually|no|wait|hmm|sorry|on second thought|scratch that)\W+)+(?:,\s*)?(?:no change|unchanged|"
+        rf"(?:leave|keep) {it}(?: (?:alone|as is|where it is|at default|default|unchanged))?|don'?t (?:move|change|touch) {it}|"
+        rf"never ?mind|forget it|default|as (?:is|it is|before))\b",
+        after,
+    ) is not None
+
+
+_LIGHT_DIRECTION = re.compile(r"(?i)\b(?:brighter|darker|dimmer|lighter|up|down|increase|decrease|dim|brighten|darken)\b")
+
+
+def _with_gap_light_direction(light: list[Span], text: str) -> list[Span]:
+    """ "[[Lighting|LIGHT]] 40% brighter - no, [[make it 80%|LIGHT]]": a corrected amount keeps the direction said
+    before it when no tagged word says one."""
+    if any(_LIGHT_DIRECTION.search(s.text) for s in light):
+        return light
+    last = light[-1]
+    after = re.match(r"\s*[(\[]?\s*(brighter|darker|dimmer|lighter|up|down)\b", text[last.end:last.end + 20], re.IGNORECASE)
+    if after is not None:  # "light: [[0.5]] (brighter)"
+        return [*light[:-1], Span(last.tag, last.start, last.end, f"{after.group(1)} {last.text}")]
+    if len(light) < 2:
+        return light
+    found = _LIGHT_DIRECTION.search(text[light[0].end:last.start])
+    if found is None:
+        return light
+    return [*light[:-1], Span(last.tag, last.start, last.end, f"{found.group(0)} {last.text}")]
+
+
 def _with_gap_directions(cam: list[Span], text: str) -> list[Span]:
     """ "[[Camera|CAM]] back 10 cm, sorry, [[4 cm|CAM]]": an amount with no direction of its own takes the direction
     words left untagged between it and the camera words before it (the corrected amount is not taken)."""
@@ -1447,6 +1497,15 @@ def _with_gap_directions(cam: list[Span], text: str) -> list[Span]:
         found = _GAP_DIRECTION.search(gap)
         if found is not None and re.search(r"\d", gap[found.end():]):
             out[k] = Span(cur.tag, cur.start, cur.end, f"{found.group(0)} {cur.text}")
+    for k in range(1, len(out)):
+        prev, cur = out[k - 1], out[k]
+        verb = re.match(r"(?i)\s*(roll|pan|tilt|yaw|pitch)\w*\b", cur.text)
+        if verb is None or re.search(r"\d", cur.text):
+            continue
+        # "pan left 2 degrees and roll 3 degrees clockwise; correction - [[roll counterclockwise]]": the amount stays
+        said = re.search(rf"(?i)\b{verb.group(1)}\w*\D{{0,20}}?(\d+(?:\.\d+)?)\s*(?:deg\w*|°)", text[prev.end:cur.start])
+        if said is not None:
+            out[k] = Span(cur.tag, cur.start, cur.end, f"{cur.text} {said.group(1)} degrees")
     return out
 
 
@@ -1518,8 +1577,26 @@ def read_tagged(
     """Description -> operations dict, through the span tagger (the committed weights by default)."""
     from ladev_lib.language.tagging.model import load_tagger
 
-    spans = load_tagger(weights).tag(description or "")
-    return assemble(description or "", spans, vocab, instruction=instruction, task=task)
+    text = plain_code(description or "")
+    spans = load_tagger(weights).tag(text)
+    return assemble(text, spans, vocab, instruction=instruction, task=task)
+
+
+_CALL = re.compile(r"\b[A-Za-z_]\w*\(\s*(?:['\"]|[A-Za-z_]\w*\s*=)")
+
+
+def plain_code(text: str) -> str:
+    """A description written as code read as the words it says: ``add('pitcher', pos='back')`` ->
+    ``add pitcher, pos back``; ``task('move_near', 'fork', 'mug')`` -> ``task move_near fork, mug``; prose and
+    other text unchanged (the tagger reads such words; quotes, brackets and keyword signs only hide them)."""
+    if len(_CALL.findall(text)) < 2:
+        return text
+    out = re.sub(r"\b([A-Za-z_]\w*)\s*=\s*(?!=)", r"\1 ", text)  # pos='back' -> pos 'back'
+    out = re.sub(r"(?<=[A-Za-z])\s*:\s*(?=[A-Za-z])", " ", out)  # 'near:mug' -> near mug
+    out = re.sub(r"\b([A-Za-z_]\w*)\s*\(", r"\1 ", out)  # add( -> add
+    out = re.sub(r"[\"'`\[\]{}()]", " ", out)
+    out = re.sub(r"\s*,\s*", ", ", out)
+    return re.sub(r"[ \t]+", " ", out).strip()
 
 
 __all__ = ["assemble", "read_tagged"]
