@@ -74,6 +74,23 @@ _TASK_CUE = (
     r"nudge|nudges|shove|shoves|tuck|tucks|pop|pops|toss|tosses|nest|nests|drag|drags|transfer|transfers|deposit|"
     r"insert|inserts|load|loads|then|next|finally|afterwards|ends?|finish(?:es)?)\b|->|=>|\?"
 )
+_DROP_BEFORE = re.compile(
+    r"(?i)\b(?:no|not|nope|without|minus|except|nor|neither|instead|rather|place of|remove|removing|removed|drop|dropped|"
+    r"delete|scratch|scrap|leave|take|get rid|lose|skip|forget|ditch|cut|nix|exclude|excluding|omit|replace[sd]?|replacing|swap|"
+    r"swapping|switch|exchange|substitute|don'?t|do not|no longer|never|sorry|actually|wait|correction|make (?:that|it)|"
+    r"make (?:the|them|those)|i mean|but|strike|cross|kill|pull|toss|bin|trash|zero|delete|del|rm|despawn|ignore|disregard|"
+    r"meant|originally|old|draft|earlier|previous|used to|plan|hmm|er|um|oops|ugh|edit|use|using|better|only|this time)\b|"
+    r"[-~!#\u2717\u2718\u00d7]\s*$|<-"
+)
+"""Words before a phrase (in its clause) that can take it back."""
+_DROP_AFTER = re.compile(
+    r"(?i)\b(?:no|not|nope|never|wait|sorry|actually|correction|make (?:that|it)|i mean|rather|instead|replaced?|replaces|"
+    r"swap(?:ped)?|switch(?:ed)?|goes|go|gone|out|away|remove[ds]?|delete[ds]?|scratch(?:ed)?|scrap|skip|drop(?:ped)?|ditch|"
+    r"forget|nix|cut|isn'?t|don'?t|won'?t|get rid|hmm|oops|changed?|mind|after all|anymore|any more|either|excluded|"
+    r"omitted|struck|crossed|zero|none|false|off|ignore|ignored|disregard|old|meant|better|er|um|use|too|only)\b|~~|\)|->|"
+    r"\u2192|=>|<-|#|\u2014"
+)
+"""Words between a phrase and the next object phrase that can take it back."""
 _ORDINALS = frozenset({"first", "second", "third", "fourth", "fifth", "sixth", "seventh", "last", "next", "other"})
 _NOT_ITEMS = frozenset({
     "lighting", "light", "lights", "camera", "cam", "setup", "table", "scene", "task", "objects", "object", "things",
@@ -261,6 +278,8 @@ class _Assembly:
             low = s.text.lower()
             before = self.text[max(0, s.start - 12):s.start].lower()
             tag = s.tag
+            if tag == "DROP" and not self._drop_said(k, out):
+                tag = "OBJ"
             if tag == "OBJ" and re.search(r"\b(?:not|no|without|minus|except)\s+$", before) and not re.search(
                 r"\b(?:nothing|none|no other|no objects?|no items?|no things?|empty)\b[^.;:]*\bexcept\s+$",
                 self.text[max(0, s.start - 80):s.start].lower(),
@@ -275,16 +294,15 @@ class _Assembly:
             elif tag in ("OBJ", "REF") and re.search(
                 r"\b(?:remove|drop|delete|scratch|leave out|take out|take away|get rid of|lose|skip|forget|ditch|cut|nix)"
                 r"\s+$", before
-            ) and not re.search(
-                r"^[^.!?\n]*[.!?\n]?[^.!?\n]*\b(?:keep|leave)\s+(?:it|them|that|the\s+\w+|it in|it there)\b|^\W*(?:never mind|"
-                r"scratch that|no wait|actually no)\b", self.text[s.end:s.end + 120].lower()
-            ):
+            ) and not self._kept_after(s):
                 tag = "DROP"  # "actually, drop the pepsi can" (not "remove the banana... actually no, keep it")
             elif tag in ("OBJ", "REF") and re.match(
                 r"\s*(?:[-\u2014\u2013,;:]|\.\s)?\s*(?:please\s+)?(?:remove|drop|delete|take out|lose|ditch|get rid of)\s+"
                 r"(?:it|that one|that)\b", self.text[s.end:s.end + 40], re.IGNORECASE
             ):
                 tag = "DROP"  # "Not the coffee can - remove it from the scene."
+            elif tag in ("OBJ", "REF") and self._replaced(s, k):
+                tag = "DROP"  # "replace the spoon with a knife", "a basket instead of the bowl", "not the knife after all"
             elif tag == "ANY" and re.search(r"\bup to\s+$", before):
                 tag = "TOTAL"  # "fill the table up to six objects with random stuff"
             elif tag == "ANY" and re.search(
@@ -331,6 +349,7 @@ class _Assembly:
                 if new is not None:
                     out[j] = Span(new, t.start, t.end, t.text)
         out = self._listed_items(out)
+        out = self._corrected_lists(out)
         # "[cup] with [a handle]": two object phrases that together are one catalog name are that object
         joined: list[Span] = []
         for s in out:
@@ -345,6 +364,124 @@ class _Assembly:
                     continue
             joined.append(s)
         self.spans = joined
+
+    def _drop_said(self, k: int, decided: list[Span]) -> bool:
+        """Whether a phrase tagged as taken back has words that take it back: near it (before it in its clause,
+        "scratch the softball", "no stapler", "instead of the bowl"; or between it and the next object phrase, "a
+        bowl -- no, a basket", "lemon <- ignore", "Red Bull -> Pepsi"), or at a later mention of the same object
+        ("a softball ... Scratch the softball"), or at an earlier one taken back. An object that replaces another ("swap the bowl for [the basket]")
+        is not taken back."""
+        s = self.spans[k]
+        objects = [t for t in self.spans if t.tag in _OBJECT_TAGS]
+        earlier = [t for t in objects if t.end <= s.start]
+        if earlier and re.fullmatch(r"\s+(?:out\s+)?(?:with|for|by|to|into)\s+", self.text[earlier[-1].end:s.start].lower()) \
+                and re.search(r"\b(?:replace|swap(?:\s+out)?|switch(?:\s+out)?|exchange|trade|change)\s+$",
+                              self.text[max(0, earlier[-1].start - 16):earlier[-1].start].lower()):
+            return False
+        lo = max([self.text.rfind(c, 0, s.start) for c in ".;\n!?"] + [s.start - 50, 0])
+        if _DROP_BEFORE.search(self.text[lo:s.start]) or _DROP_BEFORE.search(s.text):
+            return True
+        later = [t for t in objects if t.start >= s.end]
+        hi = min(later[0].start if later else len(self.text), s.end + 60)
+        gap = self.text[s.end:hi]
+        if _DROP_AFTER.search(gap) and not (later and hi == later[0].start and re.search(
+                r"\b(?:swap|replace|remove|scratch|scrap|drop|delete|lose|ditch|skip|nix|cut|forget|leave out|take out|"
+                r"get rid of|not|no|without|instead of|rather than)\s+(?:(?:the|a|an)\s+)?$", gap.lower())):
+            return True  # "a plate. Oh wait, swap [the Red Bull]": the words are said of the next one
+        def words(text: str) -> set[str]:
+            return {w.rstrip("s") for w in re.findall(r"[a-z]+", text.lower()) if w not in _STOPWORDS and len(w) > 2}
+        def same(a: str, b: str) -> bool:
+            na, nb = {n for n, _ in _names(a, self.vocab)}, {n for n, _ in _names(b, self.vocab)}
+            if na and nb:
+                return bool(na & nb) or any(x in y or y in x for x in na for y in nb)  # "the Spam" / "a Spam can"
+            return bool(words(a) & words(b))
+        return any(same(s.text, t.text) for t in later) or any(t.tag == "DROP" and same(s.text, t.text) for t in decided)
+
+    def _kept_after(self, s: Span) -> bool:
+        """Whether the words after a removal take it back: "remove the banana... actually no, keep it" (a "keep" or
+        "leave" of something else, "leave the lighting at default", does not)."""
+        after = self.text[s.end:s.end + 120].lower()
+        if re.match(r"\W*(?:never mind|scratch that|no wait|actually no)\b", after):
+            return True
+        m = re.search(r"^[^.!?\n]*[.!?\n]?[^.!?\n]*\b(?:keep|leave)\s+(?:(it|them|that|it in|it there)\b|the\s+(\w+))", after)
+        if m is None:
+            return False
+        return m.group(1) is not None or m.group(2) in set(re.findall(r"[a-z]+", s.text.lower()))
+
+    def _replaced(self, s: Span, k: int) -> bool:
+        """Whether an object phrase's own surroundings take it out of the scene: it is replaced ("replace the spoon
+        with a knife", "swap the fork for a spoon", "substitute a mug for the cup", "the bowl, replaced by a
+        basket"), a later one stands in its place ("a basket instead of the bowl", outside a sentence that states
+        the task), or it is ruled out after all ("but not the knife after all")."""
+        before = self.text[max(0, s.start - 30):s.start].lower()
+        after = self.text[s.end:s.end + 40].lower()
+        later = [t for t in self.spans[k + 1:] if t.tag in _OBJECT_TAGS]
+        nxt = later[0] if later else None
+
+        def then_object(pattern: str) -> bool:
+            m = re.match(pattern, after)
+            return m is not None and nxt is not None and nxt.start - s.end <= m.end() + 3
+        if re.search(r"\b(?:replace|swap(?:\s+out)?|switch(?:\s+out)?|exchange|trade(?:\s+in)?|change)\s+$", before) and \
+                then_object(r"\s*(?:(?:out\s+)?(?:with|for|by|into)|to)\s+"):
+            return True
+        if re.search(r"\bsubstitute\s+$", self.text[max(0, (nxt or s).start - 60):(nxt or s).start].lower()):
+            return False
+        prev = [t for t in self.spans[:k] if t.tag in ("OBJ", "REF")]
+        if prev and re.search(r"\bsubstitute\s+$", self.text[max(0, prev[-1].start - 12):prev[-1].start].lower()) and \
+                re.fullmatch(r"\s+for\s+", self.text[prev[-1].end:s.start].lower()):
+            return True  # "substitute a mug for [the cup]"
+        if then_object(r"\s*,?\s*(?:(?:is|gets|should be|will be)\s+)?(?:replaced|swapped(?:\s+out)?|switched|exchanged|"
+                       r"substituted)\s+(?:with|for|by)\s+"):
+            return True
+        if re.search(r"\b(?:instead of|in place of|rather than)\s+(?:the\s+|a\s+|an\s+)?$", before):
+            lo = max(self.text.rfind(c, 0, s.start) for c in ".;\n!?") + 1
+            hi = min([e for e in (self.text.find(c, s.end) for c in ".;\n!?") if e >= 0] or [len(self.text)])
+            return not any((t.tag in RELATION_TAGS or t.tag in ("SRC", "TGT")) and lo <= t.start < hi for t in self.spans)
+        if re.search(r"\b(?:don'?t|do not|no need to|never)\s+(?:include|add|use|need|want|put|place|bring|spawn)\s+"
+                     r"(?:the\s+|a\s+|an\s+|any\s+)?$", before):
+            return True  # "don't include the knife after all"
+        return bool(re.search(r"\b(?:not|no)\s+(?:the\s+|a\s+|an\s+)?$", before)) and bool(
+            re.match(r"\s*(?:,\s*)?(?:after all|any ?more)\b", after))
+
+    def _corrected_lists(self, spans: list[Span]) -> list[Span]:
+        """Objects a correction right after them replaces: "a bowl (no, make that a basket)", "a pear and a bowl --
+        no wait, make that a pear and a basket" (as many as the correction names, counted back from it; all of
+        them when it names as many as the list had)."""
+        out = list(spans)
+        joint = re.compile(r"\s*(?:,|;|&|\+)?\s*(?:(?:and|or|plus)\s+)?")
+        place = r"(?:\s+(?:on|onto|to|in)\s+(?:the\s+)?(?:table|desk|counter|scene|workspace|surface|setup)|\s+there|\s+too)?"
+        cue = re.compile(
+            place + r"\W*(?:(?:no|nope|wait|sorry|actually|correction|rather|hmm|oh|scratch that|i mean|make (?:that|it)|"
+            r"change (?:that|it) to|on second thought|or rather|let'?s say|well|instead)\W*)+", re.IGNORECASE)
+        strong = re.compile(r"(?i)\b(?:no|nope|sorry|actually|correction|rather|scratch that|i mean|make (?:that|it)|"
+                            r"change (?:that|it) to|on second thought|wait)\b")
+        objs = [i for i, t in enumerate(out) if t.tag in ("OBJ", "DROP")]
+        for a, b in zip(objs, objs[1:], strict=False):
+            first, second = out[a], out[b]
+            gap = self.text[first.end:second.start]
+            if first.tag != "OBJ" or second.tag != "OBJ" or not cue.fullmatch(gap) or not strong.search(gap):
+                continue
+            if any(t.start >= first.end and t.end <= second.start for t in out):
+                continue
+            before = [a]
+            while before[0] > 0 and out[before[0] - 1].tag == "OBJ" and joint.fullmatch(
+                    self.text[out[before[0] - 1].end:out[before[0]].start]):
+                before.insert(0, before[0] - 1)
+            after = [b]
+            while after[-1] + 1 < len(out) and out[after[-1] + 1].tag == "OBJ" and joint.fullmatch(
+                    self.text[out[after[-1]].end:out[after[-1] + 1].start]):
+                after.append(after[-1] + 1)
+            if len(after) == len(before):
+                dropped = before
+            else:
+                said = {n for i in after for n, _ in _names(out[i].text, self.vocab)}
+                if said & {n for t in out[:a + 1] if t.tag == "OBJ" for n, _ in _names(t.text, self.vocab)}:
+                    continue  # "one apple with a mug ... actually make it two apples": a new count, read where it is said
+                dropped = before[-1:]
+            for i in dropped:
+                t = out[i]
+                out[i] = Span("DROP", t.start, t.end, t.text)
+        return out
 
     def _listed_items(self, spans: list[Span]) -> list[Span]:
         """An item of a list of tagged objects that the tagger left untagged ("a book, [a coffee can] and [a cup]",
@@ -1299,6 +1436,17 @@ class _Assembly:
                 return int(m.group(1))
         return None
 
+    def total_after_removals(self, total: int) -> int:
+        """A stated total that counted a list an object was later taken out of ("Three objects: strawberry, plate,
+        softball. Scratch the softball."): the total of the list as it ends up."""
+        said = [s for s in self.spans if s.tag == "TOTAL" and _NUMBER.search(_norm(s.text, self.vocab))]
+        after = said[-1].end if said else 0
+        drops = [m.span.start for m in self.mentions if m.tag == "DROP" and m.span.start >= after]
+        if not drops:
+            return total
+        listed = sum(max(m.count, 1) for m in self.mentions if m.tag == "OBJ" and after <= m.span.start < drops[0])
+        return len(self.objects) if listed == total else total
+
     def randoms(self) -> tuple[int, bool]:
         """(random objects with a count, whether some random fill has no count)."""
         n, fill = 0, False
@@ -1354,8 +1502,8 @@ class _Assembly:
 
 
 _MOTION_START = re.compile(
-    r"(?i)\s*(?:and\s+|then\s+)?(?:tilt|pan|roll|yaw|pitch|rotate|turn|swing|raise|lower|lift|drop|move|shift|slide|"
-    r"dolly|push|pull|nudge|zoom|bring)\b"
+    r"(?i)\s*(?:and\s+|then\s+|while\s+|whilst\s+)?(?:tilt|pan|roll|yaw|pitch|rotate|turn|swing|raise|lower|lift|drop|"
+    r"move|shift|slide|dolly|push|pull|nudge|zoom|bring)(?:ing|s|ed)?\b"
 )
 
 
@@ -1432,6 +1580,7 @@ def _environment(spans: list[Span], text: str, vocab: Vocabulary) -> list[dict[s
         elif op["intensity_delta"] != 0.0:
             ops.append(op)
     if cam:
+        cam = _corrected_motions(_completed_values(cam, text), text)
         cam = _with_gap_directions(cam, text)
         said = _joined(cam, text)
         op = read_camera_request(said)
@@ -1456,8 +1605,10 @@ def _taken_back(last: Span, text: str, what: str) -> bool:
     no change", "camera 2 cm left... no, don't move it")."""
     after = text[last.end:last.end + 80]
     after = re.split(r"(?<!\.)[.!?](?!\.)\s+(?=[A-Z])|\n", after)[0].lower()  # up to the next sentence or line
-    it = r"(?:it|them|the lights?|the lighting|the camera|that)"
+    it = r"(?:it|them|the lights?|the lighting|the brightness|that)" if what == "light" else r"(?:it|the camera|the view|that)"
+    # the words of the request may go on before the correction ("[[Dim]] the lights by a quarter; actually, never mind")
     return re.match(
+        rf"(?:[^.!?\n]{{0,40}}?(?:[,;:\u2014\u2013-]|\.\.\.))?"
         rf"\W*(?:(?:actually|no|wait|hmm|sorry|on second thought|scratch that)\W+)+(?:,\s*)?(?:no change|unchanged|"
         rf"(?:leave|keep) {it}(?: (?:alone|as is|where it is|at default|default|unchanged))?|don'?t (?:move|change|touch) {it}|"
         rf"never ?mind|forget it|default|as (?:is|it is|before))\b",
@@ -1478,11 +1629,132 @@ def _with_gap_light_direction(light: list[Span], text: str) -> list[Span]:
     if after is not None:  # "light: [[0.5]] (brighter)"
         return [*light[:-1], Span(last.tag, last.start, last.end, f"{after.group(1)} {last.text}")]
     if len(light) < 2:
-        return light
+        # "Lighting: 40 % darker - no wait, [[25 %]]": the direction said earlier in the same statement
+        lo = max(text.rfind(c, 0, last.start) for c in ".\n")
+        said = [m for m in _LIGHT_DIRECTION.finditer(text[lo + 1:last.start]) if m.group(0).lower() not in ("up", "down")]
+        if not said or not re.search(r"\b(?:no|wait|sorry|actually|make (?:that|it)|rather|correction|i mean)\b",
+                                     text[lo + 1 + said[-1].end():last.start].lower()):
+            return light
+        return [Span(last.tag, last.start, last.end, f"{said[-1].group(0)} {last.text}")]
     found = _LIGHT_DIRECTION.search(text[light[0].end:last.start])
     if found is None:
         return light
     return [*light[:-1], Span(last.tag, last.start, last.end, f"{found.group(0)} {last.text}")]
+
+
+_CORRECTION_CUE = re.compile(
+    r"(?i)\b(?:no|nope|sorry|actually|wait|rather|correction|i mean|make (?:that|it)|change (?:that|it) to|instead|"
+    r"scratch that|on second thought|let'?s (?:say|do|go with)|go with)\b"
+)
+_DIRECTION_FAMILIES = (
+    ("left", "right"),
+    ("up", "down", "higher", "lower", "raise", "lift", "upward", "downward", "upwards", "downwards"),
+    ("forward", "forwards", "closer", "back", "backward", "backwards", "away", "in", "out", "toward", "towards",
+     "nearer", "further", "farther"),
+    ("clockwise", "counterclockwise", "counter-clockwise", "anticlockwise", "anti-clockwise", "cw", "ccw"),
+)
+_AMOUNT = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:\s*(?:cm|mm|m|deg\w*|°|%|centimet\w*|millimet\w*))?(?![\w.])", re.IGNORECASE)
+
+
+_MOTION_VERB = re.compile(
+    r"(?i)\b(?:tilt|tip|dip|angle|pan|roll|yaw|pitch|rotate|turn|swing|raise|lower|lift|move|shift|slide|dolly|push|"
+    r"pull|nudge|zoom|bring|translate)\w*\b"
+)
+
+
+def _completed_values(cam: list[Span], text: str) -> list[Span]:
+    """A camera phrase that ends on an axis whose value the tagger left out ("[[roll -2, pitch]] +3"), and a
+    phrase that ends on the "in" of "in one go", read with the words they should end with."""
+    out = []
+    for k, s in enumerate(cam):
+        after = text[s.end:s.end + 24]
+        bare_later = any(not re.search(r"[a-z]", re.sub(r"(?i)(?<=\d)\s*(?:cm|mm|deg\w*)\b", "", t.text.lower()))
+                         for t in cam[k + 1:])
+        if re.search(r"(?i)\b(?:yaw|pitch|roll|pan|tilt|d?[xyz]|t[xyz])\s*$", s.text) and not bare_later:
+            m = re.match(r"\s*[:=]?\s*[-+]?\d+(?:\.\d+)?\s*(?:°|deg\w*|cm|mm)?", after, re.IGNORECASE)
+            if m is not None and re.search(r"\d", m.group(0)):
+                s = Span(s.tag, s.start, s.end + m.end(), text[s.start:s.end + m.end()])
+        elif re.search(r"(?i)\s+in$", s.text) and re.match(r"(?i)\s+(?:one|a single|the same|a row)\b", after):
+            s = Span(s.tag, s.start, s.end - 3, text[s.start:s.end - 3])
+        out.append(s)
+    return out
+
+
+def _family(word: str) -> int | None:
+    return next((i for i, f in enumerate(_DIRECTION_FAMILIES) if word.lower() in f), None)
+
+
+def _rewritten(original: str, correction: str) -> str | None:
+    """A motion said again with the words of its correction: its amount ("3 cm closer" + "6 cm" -> "6 cm closer"),
+    its direction ("3 cm to the right" + "to the left" -> "3 cm to the left"), or both."""
+    amounts = list(_AMOUNT.finditer(original))
+    if len(amounts) > 1:
+        return None  # several motions: which one the correction is of is not read here
+    new = original
+    said = _AMOUNT.search(correction)
+    if said is not None:
+        if not amounts:
+            return None
+        value = said.group(0)
+        if not re.search(r"[a-z°%]", value, re.IGNORECASE):
+            unit = re.search(r"[a-z°%].*$", amounts[0].group(0), re.IGNORECASE)
+            value = f"{value} {unit.group(0)}" if unit else value
+        new = new[:amounts[0].start()] + value + new[amounts[0].end():]
+    for word in re.findall(r"[a-z]+(?:-[a-z]+)?", correction.lower()):
+        fam = _family(word)
+        if fam is None or word in ("in", "out") and said is not None:
+            continue
+        words = [m for m in re.finditer(r"[a-z]+(?:-[a-z]+)?", new.lower()) if _family(m.group(0)) is not None]
+        same = [m for m in words if _family(m.group(0)) == fam] or words  # "3 cm up, I mean forward": another axis
+        if same:
+            m = same[-1]
+            # the direction's own words go with it: "to the right", "closer to the table", "towards the table"
+            lo = re.search(r"(?i)(?:\bto\s+the\s+)?$", new[:m.start()])
+            hi = re.match(r"(?i)(?:\s+(?:to|from|toward|towards)?\s*the\s+(?:table|scene|robot|workspace))?", new[m.end():])
+            start = m.start() - (len(lo.group(0)) if lo else 0)
+            new = new[:start] + word + new[m.end() + (hi.end() if hi else 0):]
+        else:
+            new = f"{new} {word}"
+    return None if new == original else new
+
+
+def _corrected_motions(cam: list[Span], text: str) -> list[Span]:
+    """ "[[Camera 3 cm]] closer to the table - no, make it [[6 cm]]", "[[Move the camera]] 3 cm to the right -- no,
+    [[to the left]]", "Camera: 8 cm closer - no, make it [[4 cm]]": a corrected amount or direction read into the
+    motion it corrects, with the words of that motion the tags left out."""
+    out = list(cam)
+    if out:
+        first = out[0]
+        lo = max(text.rfind(c, 0, first.start) for c in ".\n") + 1
+        key = re.search(r"(?i)\b(?:camera|cam|view)\b", text[lo:first.start])
+        if key is not None and not re.search(r"(?i)\b(?:camera|cam|view)\b", first.text) and _AMOUNT.search(first.text) \
+                and not _MOTION_VERB.search(first.text) and _CORRECTION_CUE.search(text[lo + key.end():first.start]):
+            out.insert(0, Span(first.tag, lo + key.start(), lo + key.end(), key.group(0)))  # the statement's key, untagged
+    k = 1
+    while k < len(out):
+        prev, cur = out[k - 1], out[k]
+        gap = text[prev.end:cur.start]
+        cue = _CORRECTION_CUE.search(gap)
+        if cue is None or re.search(r"[.!?\n]", gap[:cue.start()].replace("...", "")) and _AMOUNT.search(prev.text):
+            k += 1
+            continue
+        end = min([e for e in (text.find(c, cur.end) for c in ".\n") if e >= 0] or [len(text)])
+        if _MOTION_VERB.search(cur.text) or not _AMOUNT.search(cur.text) and any(
+                _AMOUNT.search(t.text) for t in out[k + 1:] if t.start < end):
+            k += 1  # said again in full ("make that a tilt down of 2 degrees"), or its amount follows in its own words
+            continue
+        stop = re.search(r"[.!?](?:\s|$)|\n", gap[:cue.start()])
+        original = text[prev.start:prev.end + (stop.start() if stop else cue.start())]
+        original = re.sub(r"(?i)(?:[\s,;:.\u2014\u2013-]|\b(?:uh|um|er|erm|oh|well)\b)*$", "", original)
+        new = _rewritten(original, cur.text)
+        if new is None:
+            k += 1
+            continue
+        out[k - 1:k + 1] = [Span(cur.tag, prev.start, cur.end, new)]
+        if k < len(out) and re.fullmatch(r"[\s:=,;\u2014\u2013-]*", text[cur.end:out[k].start]) and \
+                re.findall(r"[a-z0-9.]+", out[k].text.lower()) == re.findall(r"[a-z0-9.]+", new.lower()):
+            del out[k]  # "pan right 3 degrees - sorry, left: pan left 3 degrees": the correction said in full again
+    return out
 
 
 def _with_gap_directions(cam: list[Span], text: str) -> list[Span]:
@@ -1560,6 +1832,8 @@ def assemble(
         ops.append(op)
     counted, _fill = a.randoms()
     total = a.total()
+    if total is not None and a.removed and len(a.objects) < total:
+        total = a.total_after_removals(total)
     randoms = max(total - len(a.objects), 0) if total is not None else max(counted - slots, 0)
     ops.extend({"op": "add_object", "object": None} for _ in range(randoms))
     ops.extend(_environment(a.spans, text, vocab))
