@@ -387,7 +387,8 @@ class ClauseReader:
         lemma = c.verb.lemma
         for g in c.governed:
             words = tuple(g.phrase.split())
-            if (lemma in lx.CARRY_VERBS or lemma in lx.PUT_VERBS) and g.relation == "near" and words in lx.CARRY_TO:
+            if (lemma in lx.CARRY_VERBS or lemma in lx.PUT_VERBS or lemma in lx.CARRY_ALL_THE_WAY) and g.relation == "near" and (
+                    words in lx.CARRY_TO or lemma in lx.CARRY_ALL_THE_WAY and words == ("over", "to")):
                 kind = self.receptacle_kind(g.refs[0]) if g.refs else None
                 if kind is not None:
                     g.relation = kind
@@ -405,7 +406,7 @@ class ClauseReader:
             return "on"
         if heads & lx.CONTAINER_HEADS:
             return "in"
-        return None
+        return _kind_by_wordnet(ref.text if ref.free else self.index.display_name(ref.object_id))
 
     def _refs_of(self, phrase: list[Token], free_ok: bool = True) -> tuple[list[Ref], list[str]]:
         """The object references in one noun phrase, and its text if it names a place instead."""
@@ -589,8 +590,8 @@ class ClauseReader:
         if cls == "pick":
             if reverse or (reverse_particle and not object_places):
                 c.reverse_pick = bool(reverse) and not c.recipient
-                if c.reverse_pick and not object_places and verb.lemma in lx.LIFT_VERBS:
-                    return "pick"  # "lift the hammer off the bench": picked up from where it lies
+                if c.reverse_pick and not object_places and (verb.lemma in lx.LIFT_VERBS or "up" in c.particles):
+                    return "pick"  # "lift the hammer off the bench", "take the beaker up from the table": picked up
                 return "other"  # "take the carrot off the plate": takes it away (merged before a placement)
             if any(g.directional or verb.lemma in lx.PICK_PLACES_WITH_STATIVE for g in object_places):
                 return "place"
@@ -780,3 +781,21 @@ def _cover_with(c: Clause) -> None:
     c.bare.append(withs[0].refs[0])
     withs[0].relation, withs[0].phrase, withs[0].directional, withs[0].refs = "on", "on", True, [covered]
     c.covers = True
+
+
+def _kind_by_wordnet(noun: str) -> str | None:
+    """What WordNet says a thing an object is carried to is: a container ("the beaker", "the hamper") holds it;
+    a table, a seat, a bed or a support ("the desk", "the bench", "the stand") has it on top; else None (it stays
+    near: "the lamp", furniture too, is no place to put things on)."""
+    from ladev_lib.language.wordnet import default_nouns
+
+    nouns = default_nouns()
+    words = [w for w in noun.lower().split() if w not in lx.DETERMINERS]
+    if nouns is None or not words:
+        return None
+    phrase = " ".join(words)
+    if nouns.is_a(phrase, "container"):
+        return "in"
+    if any(nouns.is_a(phrase, kind) for kind in ("table", "seat", "bed", "support", "platform")):
+        return "on"
+    return None

@@ -106,6 +106,18 @@ class Grounder:
             self._nouns = default_nouns()
         return self._nouns
 
+    def _plural_names_one(self, a: str, b: str) -> bool:
+        """Whether the plural of two head nouns names one thing and its singular nothing else: "scissors" /
+        "scissor", "tongs" / "tong" (WordNet lists the plural as a noun of its own, the singular as no other
+        noun); "glasses" / "glass" and "apples" / "apple" stay two numbers."""
+        nouns = self.nouns
+        plural = a if lx.looks_plural(a) else b
+        one = b if plural == a else a
+        if nouns is None or not nouns.listed(plural):
+            return False
+        mine, theirs = nouns.senses(one), nouns.senses(plural)
+        return not mine or bool(theirs) and mine[0] == theirs[0]
+
     # -- scenes ------------------------------------------------------------------
     def scene(self, entries: Iterable[str]) -> tuple[SceneObject, ...]:
         """Scene objects from catalog ids or plain names (a name the catalog knows is its object)."""
@@ -158,6 +170,12 @@ class Grounder:
         if len(fits) == 1:
             return Grounding(phrase, fits[0], "head")
         if len(fits) > 1:
+            # an object with the phrase's own head noun before one that only belongs to its group: "the block"
+            # is the toy block, not the toy box (a box is in the catalog's group of blocks)
+            own = [k for k in fits if _singular(phrase.head) in {
+                _singular(n.split()[-1]) for o in scene if o.key == k for n in o.names}]
+            if len(own) == 1:
+                return Grounding(phrase, own[0], "head")
             return self._ambiguous(phrase, fits)
         # 2b. what kind of thing each object is (WordNet), when no head noun fits
         kinds = [o.key for o in scene if self._head_fits(phrase, o, scene, kinds=True)]
@@ -290,7 +308,7 @@ class Grounder:
         sizes_a, sizes_b = _sizes(a), _sizes(b)
         if sizes_a and sizes_b and not sizes_a & sizes_b:
             return False, f"'{a.text}' -> '{b.text}' (another size)", ga, gb
-        if _number_differs(a, b):
+        if _number_differs(a, b) and not self._plural_names_one(a.head, b.head):
             return False, f"'{a.text}' -> '{b.text}' (another number)", ga, gb
         sides_a, sides_b = _positions(a), _positions(b)
         if any(lx.OPPOSITE_POSITIONS[s] in sides_b for s in sides_a):

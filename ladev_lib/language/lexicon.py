@@ -23,7 +23,7 @@ from collections.abc import Iterable
 # are in MANNER_VERBS: a negated manner verb without a destination is a
 # constraint on how to do the task, not a negation of the task.
 
-_PICK = "pick lift grab grasp take get raise hoist seize snatch collect pluck scoop hold fetch retrieve snag nab grip clutch obtain acquire"
+_PICK = "pick lift grab grasp take get raise hoist seize snatch collect pluck scoop hold fetch retrieve snag nab grip clutch obtain acquire elevate clasp"
 _PLACE = (
     "put place set lay rest drop lower position move bring slide push shove nudge shift drag carry "
     "transfer relocate reposition stack stick pop toss throw chuck insert deposit tuck stash load "
@@ -187,7 +187,9 @@ DIRECTIONAL = frozenset(
 CARRY_VERBS = frozenset({"move", "bring", "carry", "take", "transfer", "transport", "relocate", "go", "belong", "end", "land"})
 """Verbs (lemmas) that carry an object to where "to" points ("the cup goes to the tray": it is carried there)."""
 CARRY_TO = frozenset({("to",)})
-"""Relation phrases that, after a carrying verb, end at a receptacle ("over to" stays near)."""
+"""Relation phrases that, after a carrying verb, end at a receptacle ("move it over to the pot" stays near)."""
+CARRY_ALL_THE_WAY = frozenset({"carry", "transfer", "transport", "haul", "lug", "ferry"})
+"""Verbs whose object is carried all the way, "over to" a receptacle too: "carry the banana over to the plate"."""
 SURFACE_HEADS = frozenset(
     ["plate", "dish", "platter", "saucer", "tray", "rack", "shelf", "stove", "stovetop", "burner", "board", "mat", "placemat", "coaster"]
 )

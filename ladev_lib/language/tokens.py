@@ -41,6 +41,10 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\bdont\b", "do not"),
     (r"\blet's\b", "let us"),
     (r"\b(it|that|there|here|what|who|where)'s\b", r"\1 is"),
+    # "the teddy bear's been on the floor": a noun's "'s" before a participle or a place is "has" / "is", no plural
+    (r"\b([a-z]+)'s\s+(?=(?:been|got|gotten|gone|fallen|rolled|ended)\b)", r"\1 has "),
+    (r"\b([a-z]+)'s\s+(?=(?:being|sitting|lying|standing|still|already|now|on|in|at|under|over|next|near|here|there)\b)",
+     r"\1 is "),
     (r"'re\b", " are"),
     (r"'m\b", " am"),
     (r"'ll\b", " will"),

@@ -54,6 +54,10 @@ class Nouns:
                 if not line.startswith(" "):
                     self._lines[int(line[: line.index(" ")])] = line
 
+    def listed(self, noun: str) -> bool:
+        """Whether the noun has an entry of its own (as written, no plural taken off: "scissors" has, "apples" not)."""
+        return "_".join(noun.lower().split()) in self._index
+
     def senses(self, noun: str, limit: int = SENSES) -> tuple[int, ...]:
         """The synsets (as offsets) of a noun or a compound ("trash can"), first senses first."""
         key = "_".join(noun.lower().split())
