@@ -177,3 +177,26 @@ def test_camera_words_of_learners_and_keys(said, translation_m, rotation_deg):
     op = read_camera_request(said)
     assert op is not None
     assert op["translation_m"] == pytest.approx(translation_m) and op["rotation_deg"] == pytest.approx(rotation_deg)
+
+
+@pytest.mark.parametrize(
+    ("text", "translate", "rotate"),
+    [
+        # three numbers after a key of moving are x, y, z (a list, not decimal commas)
+        ("camera: translate 2,1,-3 cm; pan 1", [2, 1, -3], {"yaw": 1}),
+        ("cam_shift_cm = [1, -1, 0]", [1, -1, 0], {}),
+        ("camera offset (mm): 10, 0, -20", [1, 0, -2], {}),
+        # a decimal comma stays one number
+        ("camera 2,5 cm up", [0, 0, 2.5], {}),
+        # a translation key and its value with a space between
+        ("CAM ty 1.5cm tz -1cm", [0, 1.5, -1], {}),
+    ],
+)
+def test_camera_vectors_and_keys(text, translate, rotate):
+    t, r = camera(text)
+    assert t == pytest.approx(translate)
+    assert r == pytest.approx(rotate)
+
+
+def test_a_signed_decimal_comma_in_a_lighting_value():
+    assert read_lighting_request("light: minus 0,2") == {"op": "set_lighting", "intensity_delta": pytest.approx(-0.2)}

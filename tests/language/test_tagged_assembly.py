@@ -581,3 +581,37 @@ def test_a_lighting_request_taken_back_later_in_its_sentence(vocab):
     ops = read("[[a mug|OBJ]]. [[lift|PICK]] [[the mug|SRC]]. [[Brighten|LIGHT]] it by a fifth; actually, never mind, "
                "keep the lighting at default.", vocab)
     assert not [op for op in ops["operations"] if op["op"] == "set_lighting"]
+
+
+@pytest.mark.parametrize("annotated, expected, kept", [
+    # a task written as the schema writes it: its arguments are the task's objects, wherever the tags fell
+    ("ADD [[pear|OBJ]]\nADD [[shoebox|OBJ]]\nTASK [[put_in|IN]] [[pear shoebox|TGT]]",
+     {"type": "put_in", "source": "pear", "target": "shoebox"}, ["pear", "shoebox"]),
+    ("item,qty\n[[mug,1|OBJ]]\n[[lemon,1|OBJ]]\ntask,[[move_near|NEAR]],[[lemon;mug|REF]]",
+     {"type": "move_near", "source": "lemon", "target": "mug"}, ["mug", "lemon"]),
+    ("spawn [[golf ball|OBJ]]\nspawn [[large blue cup|OBJ]]\ngoal: [[put_in|IN]] golf ball large blue cup",
+     {"type": "put_in", "source": "golf ball", "target": "large blue cup"}, ["golf ball", "large blue cup"]),
+    # an argument no catalog name covers is one name, however many words
+    ("[[pick_up|PICK]],[[stuffed toy|SRC]]\n[[towel|OBJ]]", {"type": "pick_up", "source": "stuffed toy", "target": None},
+     ["stuffed toy", "towel"]),
+])
+def test_a_task_written_as_the_schema_writes_it(vocab, annotated, expected, kept):
+    ops = read(annotated, vocab)
+    assert task(ops) == expected
+    assert sorted(o for o in objects(ops) if o) == sorted(kept)
+
+
+def test_a_task_literal_does_not_override_a_task_corrected_elsewhere(vocab):
+    ops = read("change the destination: it says [[bowl|REF]], I want [[the basket|TGT]].\nobjects: [[apple|OBJ]], "
+               "[[bowl|OBJ]], [[basket|OBJ]]\ntask: [[put_in|IN]] [[apple|SRC]] [[bowl|REF]]", vocab)
+    assert task(ops) == {"type": "put_in", "source": "apple", "target": "basket"}
+
+
+def test_a_python_dict_and_a_call_with_keywords_are_read_as_their_words():
+    from ladev_lib.language.scene.tagged import plain_code
+
+    said = plain_code("cfg = {'objects': ['pear', 'mug', 'mug'], 'task': ('put_in', 'pear', 'mug'), 'light': None}")
+    assert "'" not in said and "pear, mug, mug" in said and "put_in, pear, mug" in said
+    call = plain_code("build(objects=['lemon', 'bowl'], task=('put_in', 'lemon', 'bowl'), cam_z=2)")
+    assert "objects lemon, bowl" in call and "cam_z 2" in call
+    assert plain_code('{"objects": ["pear"], "task": "pick_up pear"}') == '{"objects": ["pear"], "task": "pick_up pear"}'

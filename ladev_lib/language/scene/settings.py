@@ -124,7 +124,8 @@ def _clean(text: str) -> str:
     t = re.sub(r"(?<![\d.])(\d+)\s+point\s+(\d+)\b", r"\1.\2", t)  # "one point five"
     t = re.sub(r"(?<![\d.])(?<!\d\s)\bpoint\s+(\d+)\b", r"0.\1", t)  # "point five"
     t = re.sub(r"\b(?:minus|negative)\s*(?=\d|\.\d)", "-", t)
-    t = re.sub(r"(\d),(\d)", r"\1.\2", t)  # "1,5 cm"
+    # "1,5 cm" (a decimal comma), not a list of numbers ("translate 0,3,-1 cm", "(0,0,4)")
+    t = re.sub(r"(?<![\d.,])(\d),(\d)(?![\d.]*\s*,\s*[-+]?\d)", r"\1.\2", t)
     t = re.sub(r"\b(?:dn|dwn|dwon)\b", "down", t)
     t = re.sub(r"\bout[\s-]+of[\s-]+(?:range|spec|bounds)\b", " ", t)  # "out-of-range test": not a direction
     return re.sub(r"[ \t]+", " ", t).strip()
@@ -301,7 +302,8 @@ def _read_vector(t: str, translate: list[float]) -> tuple[str, bool]:
     """ "translate (0, -2, 1.5)", "translation (x, y, z) = (-10 mm, 0, +25 mm)", "xyz 0, 0, -2 cm", "translate_cm = 0, -3, 0"."""
     unit = r"(mm|cm|m(?![a-z]))"
     vector = re.search(
-        rf"\b(?:translat\w*?|xyz|offset)(?:_(mm|cm|m))?\s*(?:x\s*,\s*y\s*,\s*z\s*)?(?:in\s+{unit}\s*)?[:=]?\s*"
+        rf"\b(?:translat\w*?|xyz|offset|move|moved|shift|delta|displacement)(?:[_\s]*(?<![a-z])(mm|cm|m)\b)?\s*"
+        rf"(?:x\s*,\s*y\s*,\s*z\s*)?(?:in\s+{unit}\s*)?[:=]?\s*"
         rf"({_NUM})\s*{unit}?(?:\s*[,;]\s*|\s+)({_NUM})\s*{unit}?(?:\s*[,;]\s*|\s+)({_NUM})\s*{unit}?(?:\s*{unit})?",
         t,
     )
@@ -352,7 +354,7 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
     t = re.sub(r"\b(d?[xyz]|d?yaw|d?pitch|d?roll|pan|tilt|height)\s+(?:should|must|shall|will|would)?\s*(?:be|is|becomes|to)\s+(?=[-+]?\d)",
                r"\1: ", t)  # "z should be +2"
     t = re.sub(r"\b(height|elevation)\s+(?=[-+]\d)", r"\1: ", t)  # "height -1 cm"
-    t = re.sub(r"\b(d[xyz]|[xyz]_(?:cm|mm|m))\s+(?=[-+]?\d)", r"\1: ", t)  # "dy -1.5 dz +1", "x_cm  -2": a key and its column
+    t = re.sub(r"\b(d[xyz]|t[xyz]|[xyz]_(?:cm|mm|m))\s+(?=[-+]?\d)", r"\1: ", t)  # "dy -1.5 dz +1", "x_cm  -2": a key and its column
     t = re.sub(r"[ \t]+", " ", t)
     t, read_vals = _read_axes_after(t, translate)
     read_any = read_any or read_vals

@@ -91,6 +91,10 @@ _DROP_AFTER = re.compile(
     r"\u2192|=>|<-|#|\u2014"
 )
 """Words between a phrase and the next object phrase that can take it back."""
+_FUNCTION_WORDS = frozenset({
+    "the", "a", "an", "to", "into", "onto", "on", "in", "near", "next", "with", "and", "then", "of", "inside", "beside",
+    "by", "at", "from", "top", "it", "task", "obj", "object", "target", "dest",
+})
 _ORDINALS = frozenset({"first", "second", "third", "fourth", "fifth", "sixth", "seventh", "last", "next", "other"})
 _NOT_ITEMS = frozenset({
     "lighting", "light", "lights", "camera", "cam", "setup", "table", "scene", "task", "objects", "object", "things",
@@ -350,6 +354,7 @@ class _Assembly:
                     out[j] = Span(new, t.start, t.end, t.text)
         out = self._listed_items(out)
         out = self._corrected_lists(out)
+        out = self._task_literal(out)
         # "[cup] with [a handle]": two object phrases that together are one catalog name are that object
         joined: list[Span] = []
         for s in out:
@@ -396,6 +401,65 @@ class _Assembly:
                 return bool(na & nb) or any(x in y or y in x for x in na for y in nb)  # "the Spam" / "a Spam can"
             return bool(words(a) & words(b))
         return any(same(s.text, t.text) for t in later) or any(t.tag == "DROP" and same(s.text, t.text) for t in decided)
+
+    def _task_literal(self, spans: list[Span]) -> list[Span]:
+        """A task written as the schema writes it, with its arguments after it: "TASK put_in plum lunchbox",
+        "task,move_near,mustard bottle;spam can", "pick_up: carrot". The arguments are split at separators, or
+        at the catalog's names ("put_in golf ball large blue cup"); a word no name covers is a name of its own."""
+        found = list(re.finditer(r"\b(pick_up|move_near|put_on|put_in)\b", self.text))
+        if len(found) != 1:
+            return spans
+        lit = found[0]
+        need = 1 if lit.group(1) == "pick_up" else 2
+        stops = ["\n", ")", "}", " --", "["]
+        line = self.text[self.text.rfind("\n", 0, lit.start()) + 1:lit.start()]
+        stops += [q for q in "\"'" if line.count(q) % 2]  # a task inside a quoted string ends with it
+        line_end = min([e for e in (self.text.find(c, lit.end()) for c in stops) if e >= 0] or [len(self.text)])
+        region = self.text[lit.end():line_end]
+        args: list[tuple[int, int]] = []
+        for m in re.finditer(r"[^,;:|'\"\[\]{}()<>=\u2192]+", region):
+            piece = m.group(0)
+            if re.fullmatch(r"\s*(?:-+|to|into|onto|on|in|near|and)?\s*", piece, re.IGNORECASE):
+                continue
+            a = lit.end() + m.start() + len(piece) - len(piece.lstrip())
+            args.extend(self._names_in(a, lit.end() + m.start() + len(piece.rstrip())))
+        args = [(a, b) for a, b in args if re.search(r"[A-Za-z]", self.text[a:b])][:need]
+        if len(args) != need or any(t.tag in ("SRC", "TGT") and not args[0][0] <= t.start < args[-1][1] for t in spans):
+            return spans  # fewer arguments than the task has, or the task's objects are said elsewhere (corrected)
+        roles = [("SRC", *args[0])] + ([("TGT", *args[1])] if need == 2 else [])
+        lo, hi = args[0][0], args[-1][1]
+        kept = [t for t in spans if not (t.tag in _OBJECT_TAGS and t.start < hi and t.end > lo)
+                and not (t.tag in RELATION_TAGS and t.start < lit.end() and t.end > lit.start())]
+        tag = {"pick_up": "PICK", "move_near": "NEAR", "put_on": "ON", "put_in": "IN"}[lit.group(1)]
+        kept.append(Span(tag, lit.start(), lit.end(), lit.group(0)))
+        kept.extend(Span(role, a, b, self.text[a:b]) for role, a, b in roles)
+        return sorted(kept, key=lambda t: t.start)
+
+    def _names_in(self, a: int, b: int) -> list[tuple[int, int]]:
+        """The words from ``a`` to ``b`` cut into the catalog's names, longest first ("golf ball large blue
+        cup"); words side by side that no name covers are a name of their own ("lunchbox", "computer mouse")."""
+        words = [(w.start() + a, w.end() + a) for w in re.finditer(r"\S+", self.text[a:b])]
+        out: list[tuple[int, int]] = []
+        k, unknown = 0, False
+        while k < len(words):
+            best = None
+            for j in range(len(words) - 1, k - 1, -1):
+                if self.vocab.name_pattern.fullmatch(_norm(self.text[words[k][0]:words[j][1]].lower(), self.vocab)):
+                    best = j
+                    break
+            if best is not None:
+                out.append((words[k][0], words[best][1]))
+                k, unknown = best + 1, False
+                continue
+            if self.text[words[k][0]:words[k][1]].lower() in _FUNCTION_WORDS:
+                unknown = False
+            elif unknown:
+                out[-1] = (out[-1][0], words[k][1])
+            else:
+                out.append(words[k])
+                unknown = True
+            k += 1
+        return out
 
     def _kept_after(self, s: Span) -> bool:
         """Whether the words after a removal take it back: "remove the banana... actually no, keep it" (a "keep" or
@@ -1861,10 +1925,13 @@ _CALL = re.compile(r"\b[A-Za-z_]\w*\(\s*(?:['\"]|[A-Za-z_]\w*\s*=)")
 
 def plain_code(text: str) -> str:
     """A description written as code read as the words it says: ``add('pitcher', pos='back')`` ->
-    ``add pitcher, pos back``; ``task('move_near', 'fork', 'mug')`` -> ``task move_near fork, mug``; prose and
+    ``add pitcher, pos back``; ``task('move_near', 'fork', 'mug')`` -> ``task move_near fork, mug``; a Python
+    dict (``{'objects': ['mug'], 'task': ('pick_up', 'mug')}``) or one call with keywords likewise; prose and
     other text unchanged (the tagger reads such words; quotes, brackets and keyword signs only hide them)."""
-    if len(_CALL.findall(text)) < 2:
-        return text
+    python_literal = re.search(r"'[^'\n]{1,40}'\s*:", text) is not None and len(re.findall(r"'[^'\n]*'", text)) >= 4
+    one_call = len(_CALL.findall(text)) == 1 and len(re.findall(r"\b[A-Za-z_]\w*\s*=\s*(?!=)", text)) >= 2
+    if len(_CALL.findall(text)) < 2 and not python_literal and not one_call:
+        return text  # prose, JSON (the tagger reads its keys) and single calls stay as written
     out = re.sub(r"\b([A-Za-z_]\w*)\s*=\s*(?!=)", r"\1 ", text)  # pos='back' -> pos 'back'
     out = re.sub(r"(?<=[A-Za-z])\s*:\s*(?=[A-Za-z])", " ", out)  # 'near:mug' -> near mug
     out = re.sub(r"\b([A-Za-z_]\w*)\s*\(", r"\1 ", out)  # add( -> add
