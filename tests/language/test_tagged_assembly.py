@@ -615,3 +615,44 @@ def test_a_python_dict_and_a_call_with_keywords_are_read_as_their_words():
     call = plain_code("build(objects=['lemon', 'bowl'], task=('put_in', 'lemon', 'bowl'), cam_z=2)")
     assert "objects lemon, bowl" in call and "cam_z 2" in call
     assert plain_code('{"objects": ["pear"], "task": "pick_up pear"}') == '{"objects": ["pear"], "task": "pick_up pear"}'
+
+
+def light_of(ops: dict[str, Any]) -> list[dict[str, Any]]:
+    return [op for op in ops["operations"] if op["op"] == "set_lighting"]
+
+
+def test_a_corrected_task_whose_destination_is_a_pronoun(vocab):
+    ops = read("[[a pear|OBJ]], [[a lemon|OBJ]] and [[a bowl|OBJ]]. Put [[the pear|REF]] in [[the bowl|REF]]. No wait, put "
+               "[[the lemon|SRC]] [[in|IN]] [[it|TGT]] instead.", vocab)
+    assert task(ops) == {"type": "put_in", "source": "lemon", "target": "bowl"}
+
+
+def test_an_untagged_pronoun_after_the_relation_is_the_destination(vocab):
+    ops = read("[[a peach|OBJ]] and [[a towel|OBJ]]. Set [[the peach|SRC]] [[on|ON]] it.", vocab)
+    assert task(ops) == {"type": "put_on", "source": "peach", "target": "towel"}
+
+
+def test_a_value_under_the_other_settings_key(vocab):
+    ops = read("obj: [[mug|OBJ]]; task: [[pick_up|PICK]] [[mug|SRC]]; [[light=-0.2|CAM]]; [[cam: up 1 cm|LIGHT]]", vocab)
+    assert light_of(ops) == [{"op": "set_lighting", "intensity_delta": pytest.approx(-0.2)}]
+    assert camera(ops)[0] == pytest.approx([0.0, 0.0, 0.01])
+
+
+@pytest.mark.parametrize("said, delta", [
+    ("[[Lighting|LIGHT]] 40% darker... ugh, too dark, go with 10%.", -0.1),
+    ("[[Lights|LIGHT]] up by 20 percent.", 0.2),
+    # the statement ends at the next tagged phrase
+    ("[[lights|LIGHT]] a bit dimmer, [[camera raised 4 cm|CAM]].", None),
+])
+def test_a_lighting_key_tagged_alone_is_read_with_its_statement(vocab, said, delta):
+    ops = read("[[a mug|OBJ]]. [[lift|PICK]] [[the mug|SRC]]. " + said, vocab)
+    got = light_of(ops)
+    if delta is None:
+        assert len(got) == 1 and got[0]["intensity_delta"] < 0
+    else:
+        assert got == [{"op": "set_lighting", "intensity_delta": pytest.approx(delta)}]
+
+
+def test_the_surface_the_scene_stands_on_is_no_object(vocab):
+    ops = read("[[The tabletop|OBJ]] holds [[a mug|OBJ]] and [[a lemon|OBJ]]; [[lift|PICK]] [[the lemon|SRC]].", vocab)
+    assert sorted(objects(ops)) == ["lemon", "mug"] and "unavailable" not in ops

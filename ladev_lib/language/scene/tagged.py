@@ -91,6 +91,11 @@ _DROP_AFTER = re.compile(
     r"\u2192|=>|<-|#|\u2014"
 )
 """Words between a phrase and the next object phrase that can take it back."""
+_SUPPORT = (
+    r"(?:(?:the|a|our|my|this|lab|robot|work|bare|empty|whole)\s+)*(?:table|table ?top|desk|desktop|counter|counter ?top|"
+    r"worktop|work ?surface|workspace|work area|surface|workbench|bench ?top|floor|scene|setup|set-up|tray area)s?"
+)
+"""What the scene stands on: said as a subject or a place ("the tabletop has..."), never an object of it."""
 _FUNCTION_WORDS = frozenset({
     "the", "a", "an", "to", "into", "onto", "on", "in", "near", "next", "with", "and", "then", "of", "inside", "beside",
     "by", "at", "from", "top", "it", "task", "obj", "object", "target", "dest",
@@ -801,6 +806,8 @@ class _Assembly:
         kind = self._catalog_kind(bare) if s.tag in ("OBJ", "REF", "DROP") and bare else None
         if kind is not None:
             return [_Mention(s.tag, s, kind, count=count)]
+        if s.tag in ("OBJ", "REF") and re.fullmatch(_SUPPORT, bare):
+            return []  # "the tabletop has a sugar box": where the scene stands, no object of it
         return [_Mention(s.tag, s, _unknown_name(bare) or None, unknown=True, count=count)]
 
     def _group_noun(self, pos: int) -> str | None:
@@ -939,6 +946,12 @@ class _Assembly:
             parallel = [x for x in cands if self._placed_by(x) and self._same_sentence(x.span.end, m.span.start)]
             if parallel:
                 return parallel[-1]
+        if m.tag == "TGT":
+            # "put the plum in the cup. Actually put the strawberry in [it]": a destination stands for the
+            # latest thing said after a preposition
+            oblique = [x for x in cands if self._oblique(x)]
+            if oblique:
+                return oblique[-1]
         direct = [x for x in cands if not self._oblique(x)]
         return (direct or cands)[-1]
 
@@ -1421,6 +1434,12 @@ class _Assembly:
                 # "orange -> basket" with the arrow untagged: into a container, onto anything else
                 oid = _object_id(self.vocab, self._task_phrase(tgt_m) or "")
                 kind = "put_in" if oid is not None and oid in self.vocab.containers else "put_on"
+        if kind is not None and kind != "pick_up" and tgt_m is None and src_m is not None:
+            rel = [t for t in self.spans if t.tag in RELATION_TAGS and t.start >= src_m.span.end]
+            said = re.match(r"\s+(it|that one|that|this one)\b", self.text[rel[0].end:rel[0].end + 14]) if rel else None
+            if said is not None:  # "put the banana on it" with the pronoun left untagged
+                a, b = rel[0].end + said.start(1), rel[0].end + said.end(1)
+                tgt_m = _Mention("TGT", Span("TGT", a, b, said.group(1)), said.group(1))
         src = self._task_phrase(src_m, exclude=tgt_m if kind != "pick_up" else None)
         tgt = self._task_phrase(tgt_m, exclude=src_m) if kind != "pick_up" else None
         if kind is not None and kind != "pick_up" and src_m is None and tgt_m is not None:
@@ -1626,7 +1645,10 @@ def _environment(spans: list[Span], text: str, vocab: Vocabulary) -> list[dict[s
     from ladev_lib.language.scene.reader import read_description
 
     ops: list[dict[str, Any]] = []
-    light = [s for s in spans if s.tag == "LIGHT"]
+    # a value under the other setting's key ("[[lgt=-0.3|CAM]]", "[[cam: pan 2|LIGHT]]") is that setting's
+    spans = [Span("LIGHT", s.start, s.end, s.text) if s.tag == "CAM" and _LIGHT_KEY.match(s.text)
+             else Span("CAM", s.start, s.end, s.text) if s.tag == "LIGHT" and _CAM_KEY.match(s.text) else s for s in spans]
+    light = _statement_of_bare_key([s for s in spans if s.tag == "LIGHT"], text, spans)
     cam = [s for s in spans if s.tag == "CAM"]
     if light and _taken_back(light[-1], text, "light"):
         light = []  # "slightly darker, actually no change"
@@ -1724,6 +1746,37 @@ _MOTION_VERB = re.compile(
     r"(?i)\b(?:tilt|tip|dip|angle|pan|roll|yaw|pitch|rotate|turn|swing|raise|lower|lift|move|shift|slide|dolly|push|"
     r"pull|nudge|zoom|bring|translate)\w*\b"
 )
+
+
+_LIGHT_KEY = re.compile(r"(?i)\s*(?:lgt|light(?:ing|s)?|brightness|illumination|lux)\s*[:=]")
+_CAM_KEY = re.compile(r"(?i)\s*(?:cam(?:era)?|view(?:point)?|pov)\s*[:=]")
+
+
+def _statement_of_bare_key(light: list[Span], text: str, spans: list[Span]) -> list[Span]:
+    """ "[[Lights]] 45% brighter... hmm, too much, go with 25%": a lighting key tagged alone is read with the
+    words of its statement, a correction in them read into the value it corrects."""
+    if len(light) != 1 or re.search(r"\d", light[0].text) or _LIGHT_DIRECTION.search(light[0].text) or re.search(
+            r"(?i)\b(?:half|double|twice|quarter|third|fifth|default|normal|unchanged)\b", light[0].text):
+        return light
+    s = light[0]
+    end = min([e for e in (re.search(r"[.!?](?:\s|$)(?!\.)|\n|;", text[s.end:]),) if e is not None], key=lambda m: m.start(),
+              default=None)
+    stop = s.end + end.start() if end is not None else len(text)
+    words = text[s.start:stop]
+    if re.match(r"\.\.", text[stop:stop + 2]) or text[stop - 2:stop + 1] == "...":
+        stop2 = re.search(r"[.!?](?:\s|$)|\n|;", text[stop + 3:])
+        words = text[s.start:stop + 3 + stop2.start()] if stop2 else text[s.start:]
+    nxt = [t.start for t in spans if t.start >= s.end and t is not s]
+    if nxt and s.start + len(words) > min(nxt):
+        words = text[s.start:min(nxt)]  # up to the next tagged phrase ("lights dimmed, [[camera raised 5 cm]]")
+    cue = _CORRECTION_CUE.search(words)
+    if cue is not None:
+        amount = _AMOUNT.search(words[cue.end():])
+        new = _rewritten(words[:cue.start()].rstrip(" ,;.\u2014-"), amount.group(0)) if amount else None
+        if new is not None:
+            return [Span(s.tag, s.start, s.start + len(words), new)]
+    said = _AMOUNT.search(words) or _LIGHT_DIRECTION.search(words[len(s.text):])
+    return [Span(s.tag, s.start, s.start + len(words), words.rstrip(" ,;"))] if said else light
 
 
 def _completed_values(cam: list[Span], text: str) -> list[Span]:
