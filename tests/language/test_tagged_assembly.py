@@ -656,3 +656,20 @@ def test_a_lighting_key_tagged_alone_is_read_with_its_statement(vocab, said, del
 def test_the_surface_the_scene_stands_on_is_no_object(vocab):
     ops = read("[[The tabletop|OBJ]] holds [[a mug|OBJ]] and [[a lemon|OBJ]]; [[lift|PICK]] [[the lemon|SRC]].", vocab)
     assert sorted(objects(ops)) == ["lemon", "mug"] and "unavailable" not in ops
+
+
+@pytest.mark.parametrize("annotated, kept", [
+    # a landmark of a position, the object put there elsewhere
+    ("Objects: [[a pear|OBJ]] [[next to|POS]] [[the bowl|OBJ]], [[the bowl|OBJ]], [[a fork|OBJ]]. [[lift|PICK]] "
+     "[[the pear|SRC]].", ["pear", "bowl", "fork"]),
+    ("add [[lemon|OBJ]] at [[near|POS]] [[plate|OBJ]]\nadd [[plate|OBJ]]\n[[pick_up|PICK]] [[lemon|SRC]]",
+     ["lemon", "plate"]),
+    # a yes to an object asked about
+    ("we need [[a bowl|OBJ]] and maybe [[a spoon|OBJ]]? yeah, [[a spoon|OBJ]] as well. [[lift|PICK]] [[the spoon|SRC]].",
+     ["bowl", "spoon"]),
+    # rows of a table: each row is an object of its own
+    ("item\tplace\n[[pear|OBJ]]\t[[left|POS]]\n[[pear|OBJ]]\t[[right|POS]]\ntask\t[[pick_up|PICK]] [[a pear|SRC]]",
+     ["pear", "pear"]),
+])
+def test_a_landmark_or_an_echo_is_no_second_object(vocab, annotated, kept):
+    assert sorted(o for o in objects(read(annotated, vocab)) if o) == sorted(kept)

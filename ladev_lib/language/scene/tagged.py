@@ -360,6 +360,7 @@ class _Assembly:
         out = self._listed_items(out)
         out = self._corrected_lists(out)
         out = self._task_literal(out)
+        out = self._landmarks_and_echoes(out)
         # "[cup] with [a handle]": two object phrases that together are one catalog name are that object
         joined: list[Span] = []
         for s in out:
@@ -439,6 +440,37 @@ class _Assembly:
         kept.append(Span(tag, lit.start(), lit.end(), lit.group(0)))
         kept.extend(Span(role, a, b, self.text[a:b]) for role, a, b in roles)
         return sorted(kept, key=lambda t: t.start)
+
+    def _landmarks_and_echoes(self, spans: list[Span]) -> list[Span]:
+        """An object phrase that only names where another stands ("a red apple [near] [the plate], the plate",
+        "spawn lemon at [near] [mug] / spawn mug"), or that says yes to one asked about ("maybe a knife? yes, [a
+        knife] too"), is a mention of that object, not one more of it, when the object is put there elsewhere."""
+        out = list(spans)
+        objs = [k for k, t in enumerate(out) if t.tag == "OBJ"]
+        names = {k: {n for n, _ in _names(out[k].text, self.vocab)} for k in objs}
+        for k in objs:
+            mine = names[k]
+            if not mine or len(mine) > 1 or _count(_norm(out[k].text, self.vocab)) > 1:
+                continue
+            others = [j for j in objs if j != k and names[j] == mine]
+            if not others:
+                continue
+            prev = out[k - 1] if k > 0 else None
+            landmark = prev is not None and prev.tag in _POSITION_TAGS and re.fullmatch(
+                r"[ ]*(?:of|to|from)?[ ]*", self.text[prev.end:out[k].start]) is not None and re.search(
+                r"(?i)\b(?:near|next to|beside|by|behind|in front of|left of|right of|close to|between|on|in|under|against|"
+                r"of|to)\s*$", prev.text
+            ) is not None
+            asked = [j for j in others if j < k and "?" in self.text[out[j].end:out[k].start]]
+            echo = bool(asked) and re.search(r"(?i)\b(?:yes|yeah|yep|sure|right|ok|okay|indeed)\b\W*$",
+                                             self.text[max(0, out[k].start - 20):out[k].start]) is not None
+            if landmark or echo:
+                t = out[k]
+                out[k] = Span("REF", t.start, t.end, t.text)
+                objs_left = [j for j in objs if out[j].tag == "OBJ" and names[j] == mine]
+                if not objs_left:  # the last one said: keep it
+                    out[k] = t
+        return out
 
     def _names_in(self, a: int, b: int) -> list[tuple[int, int]]:
         """The words from ``a`` to ``b`` cut into the catalog's names, longest first ("golf ball large blue
