@@ -200,3 +200,12 @@ def test_camera_vectors_and_keys(text, translate, rotate):
 
 def test_a_signed_decimal_comma_in_a_lighting_value():
     assert read_lighting_request("light: minus 0,2") == {"op": "set_lighting", "intensity_delta": pytest.approx(-0.2)}
+
+
+@pytest.mark.parametrize(("said", "delta"), [
+    ("lights at 15% below normal", -0.15),  # an amount below the baseline, not a level of 15 %
+    ("lighting 20% above default", 0.2),
+    ("lights at 70% of normal", -0.3),  # a level, as before
+])
+def test_an_amount_below_or_above_the_baseline(said, delta):
+    assert read_lighting_request(said) == {"op": "set_lighting", "intensity_delta": pytest.approx(delta)}

@@ -673,3 +673,15 @@ def test_the_surface_the_scene_stands_on_is_no_object(vocab):
 ])
 def test_a_landmark_or_an_echo_is_no_second_object(vocab, annotated, kept):
     assert sorted(o for o in objects(read(annotated, vocab)) if o) == sorted(kept)
+
+
+def test_leave_it_out_and_a_motion_of_the_same_axis_said_again_after_a_correction(vocab):
+    ops = read("[[a pear|OBJ]], [[a mug|OBJ]] and [[a fork|OBJ]]; leave [[the fork|REF]] out. [[lift|PICK]] "
+               "[[the pear|SRC]]. Camera: [[raise|CAM]] 3 cm, then, correction, [[lower 1 cm|CAM]] instead.", vocab)
+    assert sorted(objects(ops)) == ["mug", "pear"]
+    assert camera(ops)[0] == pytest.approx([0.0, 0.0, -0.01])
+    # another axis after the correction is a motion of its own
+    both = read("[[a pear|OBJ]]. [[lift|PICK]] [[the pear|SRC]]. [[Raise the camera 1 cm|CAM]]; no wait, and "
+                "[[pan it left 2 degrees|CAM]].", vocab)
+    t, r = camera(both)
+    assert t == pytest.approx([0.0, 0.0, 0.01]) and r[2] == pytest.approx(2.0)

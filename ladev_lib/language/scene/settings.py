@@ -446,7 +446,7 @@ def read_camera_request(text: str) -> dict[str, Any] | None:
 
 _BRIGHTER = re.compile(
     r"\b(?:bright(?!ness)\w*|up|increase[ds]?|increas\w+|rais\w+|boost\w*|more light|stronger|strengthen\w*|higher|"
-    r"crank\w*|bump\w*|intensif\w*|plus|more|lighter|turn(?:ed)? up|add(?:ed|s)?)\b|^\s*\+"
+    r"crank\w*|bump\w*|intensif\w*|plus|more|lighter|turn(?:ed)? up|add(?:ed|s)?|above)\b|^\s*\+"
 )
 _DARKER = re.compile(
     r"\b(?:dark\w*|dim\w*|down|decrease[ds]?|decreas\w+|reduc\w+|lower\w*|less|lesser|weaker|cut|drop\w*|minus|"
@@ -469,7 +469,7 @@ def _change(value: float) -> dict[str, Any]:
 def _level(t: str, undirected: bool) -> float | None:
     """The level a request sets, as a fraction of normal ("at 70% of normal", "brightness 110%", "to 0.8")."""
     pct = re.search(
-        rf"({_NUM})\s*%\s*(?:of|from)\s+{_BASELINE}|(?<![-+])(?<![-+]\s)\b(\d+(?:\.\d+)?)\s*%\s*{_LEVEL_WORDS}\b|\b(?:at|to)\s+(?:about\s+|around\s+|roughly\s+)?({_NUM})\s*%(?!\s*{_COMPARATIVE})",
+        rf"({_NUM})\s*%\s*(?:of|from)\s+{_BASELINE}|(?<![-+])(?<![-+]\s)\b(\d+(?:\.\d+)?)\s*%\s*{_LEVEL_WORDS}\b|\b(?:at|to)\s+(?:about\s+|around\s+|roughly\s+)?({_NUM})\s*%(?!\s*(?:{_COMPARATIVE}|below|above|under|beneath))",
         t,
     )
     if pct is not None:

@@ -538,6 +538,8 @@ class _Assembly:
             lo = max(self.text.rfind(c, 0, s.start) for c in ".;\n!?") + 1
             hi = min([e for e in (self.text.find(c, s.end) for c in ".;\n!?") if e >= 0] or [len(self.text)])
             return not any((t.tag in RELATION_TAGS or t.tag in ("SRC", "TGT")) and lo <= t.start < hi for t in self.spans)
+        if re.search(r"\b(?:leave|keep|take|pull|cross|strike)\s+$", before) and re.match(r"\s*(?:out|off)\b", after):
+            return True  # "leave the coffee can out, actually"
         if re.search(r"\b(?:don'?t|do not|no need to|never)\s+(?:include|add|use|need|want|put|place|bring|spawn)\s+"
                      r"(?:the\s+|a\s+|an\s+|any\s+)?$", before):
             return True  # "don't include the knife after all"
@@ -1829,6 +1831,24 @@ def _completed_values(cam: list[Span], text: str) -> list[Span]:
     return out
 
 
+_AXIS_WORDS = (
+    ("x", r"\b(?:left|right|sideways|x)\b"),
+    ("z", r"\b(?:up|down|raise\w*|lower\w*|lift\w*|higher|upward\w*|downward\w*|z)\b"),
+    ("y", r"\b(?:forward\w*|back\w*|closer|away|dolly|push|pull|toward\w*|nearer|y)\b"),
+    ("yaw", r"\b(?:pan\w*|yaw\w*)\b"), ("pitch", r"\b(?:tilt\w*|pitch\w*|tip\w*)\b"), ("roll", r"\broll\w*\b"),
+)
+
+
+def _axis_of(words: str) -> str | None:
+    """The one axis a motion's words move along ("lower 2 cm": z; "tilt down 3 degrees": pitch), or None."""
+    low = words.lower()
+    rotation = [a for a, p in _AXIS_WORDS[3:] if re.search(p, low)]
+    if rotation:
+        return rotation[0] if len(rotation) == 1 else None
+    found = [a for a, p in _AXIS_WORDS[:3] if re.search(p, low)]
+    return found[0] if len(found) == 1 else None
+
+
 def _family(word: str) -> int | None:
     return next((i for i, f in enumerate(_DIRECTION_FAMILIES) if word.lower() in f), None)
 
@@ -1888,6 +1908,10 @@ def _corrected_motions(cam: list[Span], text: str) -> list[Span]:
             k += 1
             continue
         end = min([e for e in (text.find(c, cur.end) for c in ".\n") if e >= 0] or [len(text)])
+        if _MOTION_VERB.search(cur.text) and _AMOUNT.search(cur.text) and \
+                _axis_of(cur.text) is not None and _axis_of(cur.text) == _axis_of(prev.text):
+            del out[k - 1]  # "raise 2 cm, then - correction - lower 2 cm instead": the same axis said again, in full
+            continue
         if _MOTION_VERB.search(cur.text) or not _AMOUNT.search(cur.text) and any(
                 _AMOUNT.search(t.text) for t in out[k + 1:] if t.start < end):
             k += 1  # said again in full ("make that a tilt down of 2 degrees"), or its amount follows in its own words
