@@ -164,3 +164,29 @@ def test_a_phrase_ends_with_the_word_it_ends_in():
     text = "light: {change: -0.3}, ball: rcquetball"
     spans = [Span("LIGHT", 16, 19, text[16:19]), Span("OBJ", 29, 33, text[29:33])]
     assert [s.text for s in _whole_words(text, spans)] == ["-0.3", "rcquetball"]
+
+
+def test_weights_are_saved_as_half_floats_and_load_back_into_the_module(tmp_path):
+    torch = pytest.importorskip("torch")
+    from safetensors.torch import load_file
+
+    from ladev_lib.language.tagging.model import save_weights
+
+    class Tiny(torch.nn.Module):
+        def __init__(self) -> None:
+            super().__init__()
+            self.head = torch.nn.Linear(3, 2)
+
+        def trained_state(self) -> dict:
+            return {n: t.detach().contiguous() for n, t in self.state_dict().items()}
+
+    module = Tiny()
+    path = tmp_path / "w.safetensors"
+    save_weights(module, path, {"encoder": "x"})
+    state = load_file(str(path))
+    assert {t.dtype for t in state.values()} == {torch.float16}
+    other = Tiny()
+    other.load_state_dict(state)
+    assert other.head.weight.dtype == torch.float32
+    assert torch.allclose(other.head.weight, module.head.weight, rtol=1e-3, atol=1e-4)
+    assert {t.dtype for t in load_file(str(WEIGHTS)).values()} == {torch.float16}  # the committed weights too
