@@ -78,7 +78,7 @@ _DROP_BEFORE = re.compile(
     r"(?i)\b(?:no|not|nope|without|minus|except|nor|neither|instead|rather|place of|remove|removing|removed|drop|dropped|"
     r"delete|scratch|scrap|leave|take|get rid|lose|skip|forget|ditch|cut|nix|exclude|excluding|omit|replace[sd]?|replacing|swap|"
     r"swapping|switch|exchange|substitute|don'?t|do not|no longer|never|sorry|actually|wait|correction|make (?:that|it)|"
-    r"make (?:the|them|those)|i mean|but|strike|cross|kill|pull|toss|bin|trash|zero|delete|del|rm|despawn|ignore|disregard|"
+    r"make (?:the|them|those)|i mean|but|strike|cross|kill|pull|toss|bin|trash|zero|del|rm|despawn|ignore|disregard|"
     r"meant|originally|old|draft|earlier|previous|used to|plan|hmm|er|um|oops|ugh|edit|use|using|better|only|this time)\b|"
     r"[-~!#\u2717\u2718\u00d7]\s*$|<-"
 )
@@ -1793,8 +1793,7 @@ def _statement_of_bare_key(light: list[Span], text: str, spans: list[Span]) -> l
             r"(?i)\b(?:half|double|twice|quarter|third|fifth|default|normal|unchanged)\b", light[0].text):
         return light
     s = light[0]
-    end = min([e for e in (re.search(r"[.!?](?:\s|$)(?!\.)|\n|;", text[s.end:]),) if e is not None], key=lambda m: m.start(),
-              default=None)
+    end = re.search(r"[.!?](?:\s|$)(?!\.)|\n|;", text[s.end:])
     stop = s.end + end.start() if end is not None else len(text)
     words = text[s.start:stop]
     if re.match(r"\.\.", text[stop:stop + 2]) or text[stop - 2:stop + 1] == "...":
